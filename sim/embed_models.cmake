@@ -1,0 +1,11 @@
+# Writes OUT: a C++ file with each model file of FILES as a string, looked up by file name.
+set(body "// generated from models/*.xml by sim/embed_models.cmake\n#include <string>\n#include <map>\n")
+string(APPEND body "namespace fognav::sim::internal {\nconst std::map<std::string, std::string>& EmbeddedModels() {\n")
+string(APPEND body "  static const std::map<std::string, std::string> kModels = {\n")
+foreach(f ${FILES})
+  get_filename_component(name ${f} NAME)
+  file(READ ${f} text)
+  string(APPEND body "    {\"${name}\", R\"fognav_xml(${text})fognav_xml\"},\n")
+endforeach()
+string(APPEND body "  };\n  return kModels;\n}\n}  // namespace fognav::sim::internal\n")
+file(WRITE ${OUT} "${body}")
