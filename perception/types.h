@@ -69,6 +69,13 @@ struct Pose2 {
   double x = 0, y = 0, yaw = 0;
 };
 
+// A solid box: pose of its centre in some frame F (named where it is used) and half extents
+// along its own axes in metres. World objects and the robot's body parts are given as these.
+struct OrientedBox {
+  Eigen::Isometry3d X_FB = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d half_size = Eigen::Vector3d::Zero();
+};
+
 }  // namespace fognav::perception
 
 #endif  // FOGNAV_PERCEPTION_TYPES_H_
