@@ -1,0 +1,148 @@
+#include "scenarios/views.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+namespace fognav::scenarios {
+
+sim::WorldSpec MakeWorldSpec(const Scenario& scenario, bool with_robot) {
+  sim::WorldSpec spec;
+  spec.floor_size = scenario.floor_size;
+  spec.floor_center = scenario.floor_center;
+  spec.with_robot = with_robot;
+  for (const Solid& solid : WorldSolids(scenario)) {
+    spec.boxes.push_back({solid.name, solid.box.X_FB, solid.box.half_size});
+  }
+  return spec;
+}
+
+perception::CameraIntrinsics HeadIntrinsics(const SensorSettings& sensor) {
+  auto camera = sim::PinholeCamera::FromFov(Eigen::Isometry3d::Identity(), sensor.width_px,
+                                            sensor.height_px, sensor.hfov);
+  perception::CameraIntrinsics k;
+  k.width_px = sensor.width_px;
+  k.height_px = sensor.height_px;
+  k.fx = camera.fx;
+  k.fy = camera.fy;
+  k.cx = camera.cx;
+  k.cy = camera.cy;
+  k.baseline = sensor.baseline;
+  return k;
+}
+
+Eigen::Isometry3d PlaceRobot(sim::World* world, const perception::Pose2& pose) {
+  const mjModel* m = world->model();
+  mjData* d = world->data();
+  int root = mj_name2id(m, mjOBJ_BODY, "robot_base");
+  int eye = mj_name2id(m, mjOBJ_CAMERA, "robot_left_eye");
+  if (root < 0 || eye < 0 || m->body_jntnum[root] < 1) {
+    throw sim::SimError("the world has no humanoid with a free base and a robot_left_eye camera");
+  }
+  // free joint: position, then orientation quaternion (w, x, y, z); height as in the model
+  const int q = m->jnt_qposadr[m->body_jntadr[root]];
+  mju_copy(d->qpos, m->qpos0, m->nq);
+  d->qpos[q + 0] = pose.x;
+  d->qpos[q + 1] = pose.y;
+  d->qpos[q + 3] = std::cos(pose.yaw / 2);
+  d->qpos[q + 4] = 0;
+  d->qpos[q + 5] = 0;
+  d->qpos[q + 6] = std::sin(pose.yaw / 2);
+  mj_kinematics(m, d);
+  // MuJoCo cameras look along -z with y up; OpenCV's look along +z with y down
+  Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>> R_WE(d->cam_xmat + 9 * eye);
+  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
+  X_WL.linear() = R_WE * Eigen::Vector3d(1, -1, -1).asDiagonal();
+  X_WL.translation() = Eigen::Map<const Eigen::Vector3d>(d->cam_xpos + 3 * eye);
+  return X_WL;
+}
+
+StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,
+                        const Eigen::Isometry3d& X_WL, const SensorSettings& sensor) {
+  StereoView view;
+  view.intrinsics = HeadIntrinsics(sensor);
+  view.X_WL = X_WL;
+  const int w = sensor.width_px, h = sensor.height_px;
+  auto to_rgb = [&](const sim::RenderedView& r) {
+    perception::RgbImage image(w, h);
+    for (size_t i = 0; i < image.data.size(); ++i) {
+      image.data[i] = {r.rgb[3 * i], r.rgb[3 * i + 1], r.rgb[3 * i + 2]};
+    }
+    return image;
+  };
+  auto left_camera = sim::PinholeCamera::FromFov(X_WL, w, h, sensor.hfov);
+  sim::RenderedView left = renderer->Render(world.model(), world.data(), left_camera);
+  auto right_camera = left_camera;
+  right_camera.X_WC = X_WL * Eigen::Translation3d(sensor.baseline, 0, 0);
+  sim::RenderedView right =
+      renderer->Render(world.model(), world.data(), right_camera, {false, false});
+  view.left = to_rgb(left);
+  view.right = to_rgb(right);
+  view.depth.width = view.surfaces.width = w;
+  view.depth.height = view.surfaces.height = h;
+  view.depth.data = left.depth;
+  view.surfaces.data.assign(left.surface_id.begin(), left.surface_id.end());
+  return view;
+}
+
+namespace {
+
+void WriteImage(const std::string& path, const cv::Mat& image) {
+  if (!cv::imwrite(path, image)) throw InputError(path + ": could not write the image");
+}
+
+// a distinct, stable colour for each surface id
+cv::Vec3b SurfaceColour(int id) {
+  if (id < 0) return {0, 0, 0};
+  uint32_t h = uint32_t(id) * 2654435761u;
+  return {uint8_t(64 + (h & 0xbf)), uint8_t(64 + ((h >> 8) & 0xbf)), uint8_t(64 + ((h >> 16) & 0xbf))};
+}
+
+}  // namespace
+
+void WriteStereoView(const StereoView& view, const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError(dir + ": cannot create the output directory: " + error.message());
+  const int w = view.left.width, h = view.left.height;
+  auto bgr = [&](const perception::RgbImage& image) {
+    cv::Mat mat(h, w, CV_8UC3);
+    for (int v = 0; v < h; ++v) {
+      for (int u = 0; u < w; ++u) {
+        const auto& p = image.at(u, v);
+        mat.at<cv::Vec3b>(v, u) = {p.b, p.g, p.r};
+      }
+    }
+    return mat;
+  };
+  WriteImage(dir + "/left.png", bgr(view.left));
+  WriteImage(dir + "/right.png", bgr(view.right));
+  cv::Mat depth_mm(h, w, CV_16UC1), surfaces(h, w, CV_8UC3);
+  for (int v = 0; v < h; ++v) {
+    for (int u = 0; u < w; ++u) {
+      float z = view.depth.at(u, v);
+      depth_mm.at<uint16_t>(v, u) =
+          std::isfinite(z) ? uint16_t(std::min(65535.0f, std::round(z * 1000.0f))) : 0;
+      surfaces.at<cv::Vec3b>(v, u) = SurfaceColour(view.surfaces.at(u, v));
+    }
+  }
+  WriteImage(dir + "/depth.png", depth_mm);
+  WriteImage(dir + "/surfaces.png", surfaces);
+  const auto& k = view.intrinsics;
+  nlohmann::json intrinsics = {
+      {"width", k.width_px}, {"height", k.height_px}, {"fx", k.fx},   {"fy", k.fy},
+      {"cx", k.cx},          {"cy", k.cy},            {"baseline", k.baseline},
+      {"convention", "OpenCV: x right, y down, z forward; pixel (u, v) centred at (u, v)"}};
+  Eigen::Matrix4d X_WL = view.X_WL.matrix();
+  for (int r = 0; r < 4; ++r) {
+    intrinsics["X_WL"].push_back({X_WL(r, 0), X_WL(r, 1), X_WL(r, 2), X_WL(r, 3)});
+  }
+  std::ofstream json(dir + "/intrinsics.json");
+  json << intrinsics.dump(2) << "\n";
+  if (!json) throw InputError(dir + "/intrinsics.json: could not write");
+}
+
+}  // namespace fognav::scenarios

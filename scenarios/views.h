@@ -1,0 +1,46 @@
+// What the program does with a scenario short of running the loop: build its world, place the
+// robot at its start pose, render the head camera's views and write them out.
+#ifndef FOGNAV_SCENARIOS_VIEWS_H_
+#define FOGNAV_SCENARIOS_VIEWS_H_
+
+#include <string>
+
+#include "perception/types.h"
+#include "scenarios/scenario.h"
+#include "sim/render.h"
+#include "sim/world.h"
+
+namespace fognav::scenarios {
+
+// The world a scenario describes: its floor and solids, and the humanoid when with_robot.
+sim::WorldSpec MakeWorldSpec(const Scenario& scenario, bool with_robot = true);
+
+// The intrinsics of the scenario's head cameras (both eyes share them).
+perception::CameraIntrinsics HeadIntrinsics(const SensorSettings& sensor);
+
+// A stereo view of the head cameras: left and right colour, left depth and surface ids.
+struct StereoView {
+  perception::CameraIntrinsics intrinsics;
+  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();  // left camera in the world (OpenCV)
+  perception::RgbImage left, right;
+  perception::DepthImage depth;      // left camera, metres, NaN where nothing is seen
+  perception::LabelImage surfaces;   // left camera, sim surface ids, -1 where nothing is seen
+};
+
+// Places the humanoid standing at `pose` (world frame, on the floor) and returns the pose of its
+// left eye in the world (OpenCV convention). Throws sim::SimError if the world has no robot.
+Eigen::Isometry3d PlaceRobot(sim::World* world, const perception::Pose2& pose);
+
+// Renders the stereo pair from a left camera pose; the right camera sits `baseline` to its
+// right (camera +x).
+StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,
+                        const Eigen::Isometry3d& X_WL, const SensorSettings& sensor);
+
+// Writes left.png, right.png, depth.png (16-bit millimetres, 0 = nothing seen), surfaces.png
+// (each surface id a distinct colour) and intrinsics.json into dir (created if missing).
+// Throws InputError if dir cannot be written.
+void WriteStereoView(const StereoView& view, const std::string& dir);
+
+}  // namespace fognav::scenarios
+
+#endif  // FOGNAV_SCENARIOS_VIEWS_H_

@@ -1,0 +1,127 @@
+#include "sim/render.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "sim/world.h"
+
+namespace fognav::sim {
+namespace {
+
+// camera at (0, 0, h) looking along world +x (OpenCV: z forward = world x, x right = -world y)
+Eigen::Isometry3d LookAlongX(double height) {
+  Eigen::Matrix3d R_WC;
+  R_WC.col(0) = -Eigen::Vector3d::UnitY();
+  R_WC.col(1) = -Eigen::Vector3d::UnitZ();
+  R_WC.col(2) = Eigen::Vector3d::UnitX();
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+  X_WC.linear() = R_WC;
+  X_WC.translation() = Eigen::Vector3d(0, 0, height);
+  return X_WC;
+}
+
+WorldBox Box(const std::string& name, const Eigen::Vector3d& center, const Eigen::Vector3d& half,
+             double yaw = 0) {
+  WorldBox box;
+  box.name = name;
+  box.X_WB = Eigen::Translation3d(center) * Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ());
+  box.half_size = half;
+  return box;
+}
+
+TEST(Render, DepthOfAWallAtOneMetreWithinTwoMillimetres) {
+  WorldSpec spec;
+  spec.with_robot = false;
+  spec.floor_center = {2, 0};
+  // wall face at x = 1.0 exactly, seen head-on
+  spec.boxes.push_back(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0}));
+  World world(spec);
+  Renderer renderer(world.model());
+  auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
+  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  int checked = 0;
+  for (int v = 0; v < view.height; v += 7) {
+    for (int u = 0; u < view.width; u += 7) {
+      float z = view.depth[size_t(v) * view.width + u];
+      ASSERT_TRUE(std::isfinite(z));
+      // pixels on the wall (the floor shows only below the horizon, beyond 1 m never)
+      if (view.surface_id[size_t(v) * view.width + u] / kSurfacesPerGeom == world.box_geom(0)) {
+        EXPECT_NEAR(z, 1.0, 0.002) << "pixel " << u << "," << v;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, 200);
+}
+
+TEST(Render, SurfaceIdsNameTheFacesOfABox) {
+  WorldSpec spec;
+  spec.with_robot = false;
+  spec.floor_center = {2, 0};
+  // a box turned 45 degrees: the camera sees its -x and +y faces side by side, and its top
+  spec.boxes.push_back(Box("cube", {1.5, 0, 0.15}, {0.15, 0.15, 0.15}, M_PI / 4));
+  World world(spec);
+  Renderer renderer(world.model());
+  auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
+  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  const int geom = world.box_geom(0);
+  // project known points on the faces into the image and check the id there
+  auto id_at = [&](const Eigen::Vector3d& p_W) {
+    Eigen::Vector3d p_C = camera.X_WC.inverse() * p_W;
+    int u = int(std::lround(camera.fx * p_C.x() / p_C.z() + camera.cx));
+    int v = int(std::lround(camera.fy * p_C.y() / p_C.z() + camera.cy));
+    EXPECT_TRUE(u >= 0 && v >= 0 && u < view.width && v < view.height) << p_W.transpose();
+    if (u < 0 || v < 0 || u >= view.width || v >= view.height) return -2;
+    return view.surface_id[size_t(v) * view.width + u];
+  };
+  // box-frame points (-0.15, -0.05) on the -x face and (0.05, 0.15) on the +y face, turned by
+  // 45 degrees about the box centre (1.5, 0)
+  const Eigen::Rotation2Dd R_WB(M_PI / 4);
+  Eigen::Vector2d on_minus_x = Eigen::Vector2d(1.5, 0) + R_WB * Eigen::Vector2d(-0.15, -0.05);
+  Eigen::Vector2d on_plus_y = Eigen::Vector2d(1.5, 0) + R_WB * Eigen::Vector2d(0.05, 0.15);
+  EXPECT_EQ(id_at({on_minus_x.x(), on_minus_x.y(), 0.15}), geom * kSurfacesPerGeom + 1);
+  EXPECT_EQ(id_at({on_plus_y.x(), on_plus_y.y(), 0.15}), geom * kSurfacesPerGeom + 2);
+  EXPECT_EQ(id_at({1.5, 0, 0.30}), geom * kSurfacesPerGeom + 4);  // top
+  EXPECT_EQ(id_at({2.0, 0.3, 0.0}), world.floor_geom() * kSurfacesPerGeom + kWholeGeomSurface);
+  // far above the horizon there is nothing
+  EXPECT_EQ(view.surface_id[0], -1);
+  EXPECT_TRUE(std::isnan(view.depth[0]));
+}
+
+TEST(Render, IntrinsicsReprojectAKnownPointWithinHalfAPixel) {
+  WorldSpec spec;
+  spec.with_robot = false;
+  spec.floor_center = {2, 0};
+  // a small marker box; its top-front corner is a known 3D point
+  spec.boxes.push_back(Box("marker", {1.6, 0.25, 0.35}, {0.1, 0.1, 0.05}));
+  World world(spec);
+  Renderer renderer(world.model());
+  // an off-centre principal point and a non-square image exercise the frustum
+  PinholeCamera camera = PinholeCamera::FromFov(LookAlongX(0.45), 200, 120, 0.9);
+  camera.cx += 7.0;
+  camera.cy -= 4.0;
+  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  // the image column where the marker's left edge (world y = 0.35) starts on row of its front face
+  Eigen::Vector3d p_W(1.5, 0.35, 0.35);  // centre of the front face's left edge
+  Eigen::Vector3d p_C = camera.X_WC.inverse() * p_W;
+  double u_expected = camera.fx * p_C.x() / p_C.z() + camera.cx;
+  int v = int(std::lround(camera.fy * p_C.y() / p_C.z() + camera.cy));
+  // find the first pixel from the left on row v that shows the marker
+  const int geom = world.box_geom(0);
+  int u_first = -1;
+  for (int u = 0; u < view.width; ++u) {
+    if (SurfaceGeom(view.surface_id[size_t(v) * view.width + u]) == geom) {
+      u_first = u;
+      break;
+    }
+  }
+  ASSERT_GE(u_first, 0);
+  // the edge lies between the centres of the last background pixel and the first marker pixel
+  EXPECT_NEAR(u_first - 0.5, u_expected, 0.5 + 1e-6);
+  // and the depth there is the front face's distance
+  EXPECT_NEAR(view.depth[size_t(v) * view.width + u_first + 2], 1.5, 0.002);
+}
+
+}  // namespace
+}  // namespace fognav::sim
