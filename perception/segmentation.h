@@ -3,6 +3,7 @@
 #ifndef FOGNAV_PERCEPTION_SEGMENTATION_H_
 #define FOGNAV_PERCEPTION_SEGMENTATION_H_
 
+#include <cstdint>
 #include <vector>
 
 #include <Eigen/Core>
@@ -11,28 +12,172 @@
 
 namespace fognav::perception {
 
+// ---- range data ----
+
+// OpenCV StereoSGBM settings for the 176x144, 45° hfov, 5 cm baseline head camera on textured
+// renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m).
+struct StereoParams {
+  int min_disparity = 0;          // pixels
+  int num_disparities = 48;       // search range in pixels, a multiple of 16 (nearest 0.22 m)
+  int block_size = 5;             // matching block side in pixels, odd
+  int p1 = 0;                     // SGM small-change penalty; 0 = 8 * 3 * block_size^2
+  int p2 = 0;                     // SGM large-change penalty; 0 = 32 * 3 * block_size^2
+  int disp12_max_diff = 1;        // left-right consistency in pixels; < 0 disables
+  int pre_filter_cap = 31;        // clip of the x-derivative prefilter
+  int uniqueness_ratio = 10;      // percent margin of the best over the second-best cost
+  int speckle_window_size = 40;   // largest speckle in pixels removed; 0 disables
+  int speckle_range = 2;          // disparity variation (pixels) within one connected speckle
+  bool full_dp = false;           // OpenCV MODE_HH (full 8-path) instead of MODE_SGBM
+  bool pad_left = true;           // pad both images on the left by num_disparities columns so
+                                  // that the left border columns also get disparities
+  double max_depth = 10.0;        // metres; farther points (disparity below f B / max_depth) NaN
+};
+
+// Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
+// +K.baseline along the camera x axis) into 3D points in the left camera frame (OpenCV
+// convention, metres). Pixels where matching fails are NaN. If disparity_px is given it receives
+// the disparity in pixels (NaN where invalid), the same size as the images.
+PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const CameraIntrinsics& K,
+                            const StereoParams& p = {}, Image<float>* disparity_px = nullptr);
+
+// 3D points from a depth image (metres along the optical axis, NaN or <= 0 = none): pixel (u, v)
+// becomes z * ((u - cx) / fx, (v - cy) / fy, 1); NaN where there is no depth.
+PointImage DepthPointImage(const DepthImage& depth_m, const CameraIntrinsics& K);
+
+// 2x sub-sampling as on QRIO (176x144 -> 88x72): output pixel (u, v) is input pixel
+// (2u, 2v); the output size is (width / 2, height / 2) rounded down.
+PointImage Subsample2x(const PointImage& points);
+// The same sub-sampling for label images (e.g. ground-truth surface ids): output (u, v) is
+// input (2u, 2v).
+LabelImage Subsample2x(const LabelImage& labels);
+// The same sub-sampling for depth images: output (u, v) is input (2u, 2v).
+DepthImage Subsample2x(const DepthImage& depth);
+// Intrinsics of the 2x sub-sampled image: fx / 2, fy / 2, cx / 2, cy / 2, half the size.
+CameraIntrinsics Subsample2x(const CameraIntrinsics& K);
+
+// ---- segmentation ----
+
 // A planar region found in a point image (paper Section 3.5: P_i = (n, d, N, b, A, B)).
-// Camera frame: points p on the plane satisfy p . n = d.
+// Camera frame: points p on the plane satisfy p . n = d. Because n points towards the camera
+// (the visible side), d = -(distance from the camera centre to the plane) < 0.
 struct Plane {
   Eigen::Vector3d n = Eigen::Vector3d::Zero();  // unit normal, pointing towards the camera
-  double d = 0;                                  // signed distance to the origin, metres
+  double d = 0;                                  // signed distance to the origin, metres (< 0)
   int num_points = 0;                            // N
   Eigen::Vector3d b = Eigen::Vector3d::Zero();   // sum of points
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();   // sum of p p^T
+  double rms = 0;                                // RMS residual of its points, metres (eq. 9)
   // Border per scan line: for each row v of the image the plane touches, the first and
   // last column (inclusive) of its pixels on that row.
   struct RowSpan {
     int v = 0, u_begin = 0, u_end = 0;
   };
   std::vector<RowSpan> border;
+
+  // Signed distance of camera-frame point p to the plane in metres, positive on the camera side.
+  double SignedDistance(const Eigen::Vector3d& p) const { return p.dot(n) - d; }
+  // Mean of its points in the camera frame, metres.
+  Eigen::Vector3d Centroid() const { return num_points > 0 ? Eigen::Vector3d(b / num_points) : b; }
 };
 
 // The planes of one point image and a label image of the same size: the index of the plane
-// each pixel belongs to, or -1 for none.
+// each pixel belongs to, or -1 for none. Planes are sorted by decreasing num_points.
 struct PlaneSet {
   std::vector<Plane> planes;
   LabelImage labels;
 };
+
+// How scan lines are cut into line segments: the paper's rd-split (run distribution test,
+// C_max) or the classic split with the chord threshold d_cord of the UB method [Jiang & Bunke],
+// which also accepts lines into planes by their end points' distance d_line instead of r_sigma.
+enum class LineMethod { kRdSplit, kSplit };
+
+// Parameters of scan-line grouping; defaults are the paper's Table 1 for stereo data.
+struct SegmentParams {
+  int n_min = 5;            // N_min, fewest points of a line segment
+  int c_max = 15;           // C_max, consecutive same-side points that force a split (10 for
+                            // precise range data)
+  double r_seed = 2;        // r_sigma threshold for the three lines of a seed (eq. 13)
+  double r_grow = 3;        // r_sigma threshold for growing a region by a line (eq. 14)
+  LineMethod method = LineMethod::kRdSplit;
+  double d_cord = 0.015;    // UB split: chord distance threshold, metres
+  double d_line = 0.03;     // UB: end point distance to the plane for line membership, metres
+  int trade_window = 5;     // side in pixels of the window for trading points (odd)
+  // Extensions that the paper does not name (set to 0 to turn off):
+  double sigma_min = 0.001;     // floor on a line's sigma and a plane's rms in r_sigma, metres
+                                // (noise-free or 1 mm quantised depth would give sigma ~ 0)
+  double side_tolerance = 0.0005;  // residuals below this (metres) count as on the line, not on
+                                   // a side, in max-count-consecutive-same-side
+  double jump_ratio = 0.1;      // a scan line is cut between neighbours whose depth differs by
+                                // more than this fraction (occlusion boundaries)
+  int max_gap_px = 1;           // invalid pixels a line segment may bridge on its scan line
+  int min_plane_points = 15;    // planes with fewer points after post-processing are dropped
+  bool trade_lines = true;      // post-processing steps, each may be turned off
+  bool trade_points = true;
+  bool merge_planes = true;
+  bool merge_coplanar = true;   // extension: also merge regions that are not neighbours in the
+                                // image (one surface split by an occluder) by the same test
+};
+
+// Table 1 settings for precise range data such as the ideal depth mode: C_max = 10 and a
+// sigma floor of 0.3 mm (depth rounded to whole millimetres has sigma 0.29 mm).
+inline SegmentParams PreciseRangeParams() {
+  SegmentParams p;
+  p.c_max = 10;
+  p.sigma_min = 0.0003;
+  return p;
+}
+
+// Segments an organised point image (camera frame, NaN = no data) into planes by extended
+// scan-line grouping: line extraction, seeds, region growing, line trading, point trading,
+// plane merging (paper Section 3). Each point is read only in line extraction and point trading.
+PlaneSet SegmentPlanes(const PointImage& points, const SegmentParams& p = {});
+
+// ---- pictures ----
+
+// The segment picture of the paper's Fig. 4-5: each plane a distinct colour, plane borders
+// black, unsegmented pixels white.
+RgbImage DrawSegments(const PlaneSet& planes);
+// A disparity image in false colour (near = red, far = blue, scaled to its largest value),
+// invalid (NaN) pixels black.
+RgbImage DrawDisparity(const Image<float>& disparity_px);
+
+// ---- scoring against ground truth ----
+
+// Which ground-truth surfaces are scored and how strictly (DESIGN.md "Ground truth").
+struct ScoreParams {
+  int min_surface_px = 50;      // surfaces covering fewer pixels are ignored
+  double max_depth_m = 2.5;     // surfaces whose median depth is farther are ignored
+  double tolerance = 0.8;       // Hoover et al.'s compare tolerance T
+};
+
+// Scores of a segmentation against ground-truth surfaces. accuracy and coverage are 0 when no
+// surface is scored. Hoover counts: a segment enters them if at least half of its pixels lie on
+// scored surfaces; a scored surface without a correct/over/under instance is missed, such a
+// segment without one is noise.
+struct SegmentationScore {
+  double accuracy = 0;   // sum |S ∩ G| / sum |S| over scored G and best-overlapping S (Table 2)
+  double coverage = 0;   // sum |S ∩ G| / sum |G|
+  int correct = 0;       // Hoover: correct detections
+  int over = 0;          // over-segmented surfaces
+  int under = 0;         // under-segmenting segments
+  int missed = 0;        // missed surfaces
+  int noise = 0;         // noise segments
+  int planes = 0;        // segments in the label image
+  int truth_surfaces = 0;  // scored ground-truth surfaces
+  int64_t overlap_px = 0;  // sum |S ∩ G|
+  int64_t segment_px = 0;  // sum |S|
+  int64_t surface_px = 0;  // sum |G|
+};
+
+// Scores a label image (segment ids >= 0, -1 none) against ground-truth surface ids (>= 0, -1
+// none) and depth (metres, NaN none), all the same size.
+SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& truth_surface_ids,
+                                    const DepthImage& truth_depth_m, const ScoreParams& p = {});
+
+// Pools scores of several views: counts add, accuracy and coverage are recomputed from the
+// pixel sums.
+SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores);
 
 }  // namespace fognav::perception
 

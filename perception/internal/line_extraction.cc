@@ -1,0 +1,237 @@
+// Line extraction along scan lines (paper Section 3.2).
+#include "perception/internal/line_extraction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fognav::perception::internal {
+namespace {
+
+// Sums x y z xx xy xz yy yz zz over points [i0, i1] from the running sums.
+Moments RangeMoments(const ScanlineScratch& s, int i0, int i1) {
+  const auto& hi = s.prefix[size_t(i1) + 1];
+  const auto& lo = s.prefix[size_t(i0)];
+  double d[9];
+  for (int k = 0; k < 9; ++k) d[k] = hi[k] - lo[k];
+  Moments m;
+  m.n = i1 - i0 + 1;
+  m.b = Eigen::Vector3d(d[0], d[1], d[2]);
+  m.A << d[3], d[4], d[5], d[4], d[6], d[7], d[5], d[7], d[8];
+  return m;
+}
+
+// A least-squares line in the 2D coordinates (a, c) of a scan line's plane.
+struct Line2 {
+  double ma = 0, mc = 0;  // centroid
+  double na = 0, nc = 1;  // unit normal
+  double sigma = 0;       // RMS orthogonal residual
+};
+
+// The scan line's plane contains the x axis and the unit direction (0, ty, 1) / k; a point's 2D
+// coordinates are a = x and c = (ty y + z) / k. The line fit uses the centred 2D moments, which
+// follow linearly from the 3D moments.
+struct ScanPlane {
+  double ty = 0, k = 1;
+};
+
+Line2 FitLine(const Moments& m, const ScanPlane& sp) {
+  const double n = m.n;
+  const double sa = m.b.x(), sc = (sp.ty * m.b.y() + m.b.z()) / sp.k;
+  const double saa = m.A(0, 0);
+  const double sac = (sp.ty * m.A(0, 1) + m.A(0, 2)) / sp.k;
+  const double scc =
+      (sp.ty * sp.ty * m.A(1, 1) + 2 * sp.ty * m.A(1, 2) + m.A(2, 2)) / (sp.k * sp.k);
+  Line2 l;
+  l.ma = sa / n;
+  l.mc = sc / n;
+  const double caa = saa / n - l.ma * l.ma;
+  const double cac = sac / n - l.ma * l.mc;
+  const double ccc = scc / n - l.mc * l.mc;
+  // smallest eigenvalue and its eigenvector of the 2x2 covariance
+  const double half_diff = 0.5 * (caa - ccc);
+  const double root = std::sqrt(half_diff * half_diff + cac * cac);
+  const double lmin = 0.5 * (caa + ccc) - root;
+  l.sigma = std::sqrt(std::max(lmin, 0.0));
+  const double theta = 0.5 * std::atan2(2 * cac, caa - ccc);  // direction of the line
+  l.na = -std::sin(theta);
+  l.nc = std::cos(theta);
+  return l;
+}
+
+// Index in (i0, i1) of the point farthest from the chord between points i0 and i1.
+int FarthestFromChord(const ScanlineScratch& s, int i0, int i1, double* dist) {
+  const double da = s.a[size_t(i1)] - s.a[size_t(i0)], dc = s.c[size_t(i1)] - s.c[size_t(i0)];
+  const double len = std::sqrt(da * da + dc * dc);
+  int best = i0 + 1;
+  double best_d = -1;
+  for (int i = i0 + 1; i < i1; ++i) {
+    const double ra = s.a[size_t(i)] - s.a[size_t(i0)], rc = s.c[size_t(i)] - s.c[size_t(i0)];
+    const double d = len > 0 ? std::abs(ra * dc - rc * da) / len : std::sqrt(ra * ra + rc * rc);
+    if (d > best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  *dist = best_d;
+  return best;
+}
+
+class RowSplitter {
+ public:
+  RowSplitter(const SegmentParams& p, int row, const ScanPlane& sp, ScanlineScratch* s,
+              std::vector<LineSegment>* out)
+      : p_(p), row_(row), sp_(sp), s_(*s), out_(*out) {}
+
+  // rd-split: fit, count same-side runs, accept or split at the farthest point
+  void RdSplit(int i0, int i1) {
+    const int n = i1 - i0 + 1;
+    if (n < p_.n_min) return;
+    const Moments m = RangeMoments(s_, i0, i1);
+    const Line2 line = FitLine(m, sp_);
+    for (int i = i0; i <= i1; ++i)
+      s_.r[size_t(i)] = line.na * (s_.a[size_t(i)] - line.ma) + line.nc * (s_.c[size_t(i)] - line.mc);
+    const int c = MaxConsecutiveSameSide(&s_.r[size_t(i0)], n, p_.side_tolerance);
+    if (c < p_.c_max || n < 3) {
+      Emit(i0, i1, m, line.sigma);
+      return;
+    }
+    double dist;
+    const int k = FarthestFromChord(s_, i0, i1, &dist);
+    RdSplit(i0, k);
+    RdSplit(k + 1, i1);
+  }
+
+  // classic split of Duda and Hart with the chord threshold d_cord
+  void Split(int i0, int i1) {
+    const int n = i1 - i0 + 1;
+    if (n < p_.n_min) return;
+    double dist = 0;
+    const int k = n >= 3 ? FarthestFromChord(s_, i0, i1, &dist) : i0;
+    if (n < 3 || dist < p_.d_cord) {
+      const Moments m = RangeMoments(s_, i0, i1);
+      Emit(i0, i1, m, FitLine(m, sp_).sigma);
+      return;
+    }
+    Split(i0, k);
+    Split(k + 1, i1);
+  }
+
+ private:
+  void Emit(int i0, int i1, const Moments& m, double sigma) {
+    LineSegment l;
+    l.s = row_;
+    l.b = s_.u[size_t(i0)];
+    l.e = s_.u[size_t(i1)];
+    l.m = m;
+    l.sigma = sigma;
+    l.p_first = s_.p[size_t(i0)];
+    l.p_last = s_.p[size_t(i1)];
+    out_.push_back(l);
+  }
+
+  const SegmentParams& p_;
+  int row_;
+  ScanPlane sp_;
+  ScanlineScratch& s_;
+  std::vector<LineSegment>& out_;
+};
+
+}  // namespace
+
+int MaxConsecutiveSameSide(const double* residuals, int count, double tolerance) {
+  int best = 0, run = 0, side = 0;
+  for (int i = 0; i < count; ++i) {
+    const double r = residuals[i];
+    const int s = r > tolerance ? 1 : (r < -tolerance ? -1 : 0);
+    if (s == 0) {
+      run = 0;
+    } else if (s == side) {
+      ++run;
+    } else {
+      run = 1;
+    }
+    side = s;
+    best = std::max(best, run);
+  }
+  return best;
+}
+
+void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out,
+                  ScanlineScratch* scratch) {
+  const int w = points.width, h = points.height;
+  out->width = w;
+  out->height = h;
+  out->lines.clear();
+  out->row_begin.assign(size_t(h) + 1, 0);
+  out->valid.assign(size_t(w) * h, 0);
+  ScanlineScratch& s = *scratch;
+  s.u.resize(size_t(w));
+  s.p.resize(size_t(w));
+  s.a.resize(size_t(w));
+  s.c.resize(size_t(w));
+  s.r.resize(size_t(w));
+  s.prefix.resize(size_t(w) + 1);
+
+  for (int v = 0; v < h; ++v) {
+    out->row_begin[size_t(v)] = int(out->lines.size());
+    // read the row's points once: valid mask, compact list, running sums
+    const Eigen::Vector3f* row = &points.points[size_t(v) * w];
+    uint8_t* valid = &out->valid[size_t(v) * w];
+    int n = 0;
+    std::array<double, 9> sum{};
+    s.prefix[0] = sum;
+    for (int u = 0; u < w; ++u) {
+      const Eigen::Vector3f& q = row[u];
+      if (!(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()))) continue;
+      valid[u] = 1;
+      const double x = q.x(), y = q.y(), z = q.z();
+      s.u[size_t(n)] = u;
+      s.p[size_t(n)] = Eigen::Vector3d(x, y, z);
+      sum[0] += x;
+      sum[1] += y;
+      sum[2] += z;
+      sum[3] += x * x;
+      sum[4] += x * y;
+      sum[5] += x * z;
+      sum[6] += y * y;
+      sum[7] += y * z;
+      sum[8] += z * z;
+      s.prefix[size_t(++n)] = sum;
+    }
+    if (n < p.n_min) continue;
+
+    // the scan line's plane through the camera centre, and 2D coordinates in it
+    ScanPlane sp;
+    if (std::abs(sum[2]) > 0) sp.ty = sum[1] / sum[2];
+    sp.k = std::sqrt(1 + sp.ty * sp.ty);
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d& q = s.p[size_t(i)];
+      s.a[size_t(i)] = q.x();
+      s.c[size_t(i)] = (sp.ty * q.y() + q.z()) / sp.k;
+    }
+
+    // cut into runs at gaps and depth jumps, then split each run into line segments
+    RowSplitter splitter(p, v, sp, &s, &out->lines);
+    int start = 0;
+    for (int i = 1; i <= n; ++i) {
+      bool cut = i == n;
+      if (!cut) {
+        cut = s.u[size_t(i)] - s.u[size_t(i) - 1] > p.max_gap_px + 1;
+        if (!cut && p.jump_ratio > 0) {
+          const double c0 = std::abs(s.c[size_t(i) - 1]), c1 = std::abs(s.c[size_t(i)]);
+          cut = std::abs(c1 - c0) > p.jump_ratio * std::min(c0, c1);
+        }
+      }
+      if (!cut) continue;
+      if (p.method == LineMethod::kRdSplit) {
+        splitter.RdSplit(start, i - 1);
+      } else {
+        splitter.Split(start, i - 1);
+      }
+      start = i;
+    }
+  }
+  out->row_begin[size_t(h)] = int(out->lines.size());
+}
+
+}  // namespace fognav::perception::internal

@@ -1,0 +1,59 @@
+// Line segments of scan lines (paper Section 3.2): rd-split and the classic split.
+#ifndef FOGNAV_PERCEPTION_INTERNAL_LINE_EXTRACTION_H_
+#define FOGNAV_PERCEPTION_INTERNAL_LINE_EXTRACTION_H_
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "perception/internal/plane_moments.h"
+#include "perception/segmentation.h"
+#include "perception/types.h"
+
+namespace fognav::perception::internal {
+
+// A line record L = (s, b, e, N, b, A, sigma) of eq. (11), plus its end points (for the UB
+// method's d_line test) and the plane it was grouped into (-1 none).
+struct LineSegment {
+  int s = 0;      // scan line (row)
+  int b = 0;      // first column
+  int e = 0;      // last column, inclusive
+  Moments m;      // N, sum p, sum p p^T of its points
+  double sigma = 0;  // RMS distance of its points to the fitted 2D line, metres
+  Eigen::Vector3d p_first = Eigen::Vector3d::Zero();
+  Eigen::Vector3d p_last = Eigen::Vector3d::Zero();
+  int plane = -1;
+};
+
+// All line segments of an image, ordered by row and, within a row, by column; and which pixels
+// hold a valid point.
+struct LineSet {
+  int width = 0, height = 0;
+  std::vector<LineSegment> lines;
+  std::vector<int> row_begin;   // lines of row s are [row_begin[s], row_begin[s + 1])
+  std::vector<uint8_t> valid;   // 1 where the pixel's point is finite, row-major
+};
+
+// Reusable buffers of one scan line, so that extraction allocates nothing per pixel.
+struct ScanlineScratch {
+  std::vector<int> u;
+  std::vector<Eigen::Vector3d> p;
+  std::vector<double> a, c;                    // 2D coordinates in the scan line's plane
+  std::vector<double> r;                       // residuals to the fitted line
+  std::vector<std::array<double, 9>> prefix;   // running sums x y z xx xy xz yy yz zz
+};
+
+// Reads every point of the image once and cuts each scan line into line segments with
+// p.method (rd-split or split), replacing the contents of *out.
+void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out,
+                  ScanlineScratch* scratch);
+
+// max-count-consecutive-same-side: the longest run of consecutive residuals with the same sign,
+// where |r| <= tolerance breaks a run.
+int MaxConsecutiveSameSide(const double* residuals, int count, double tolerance);
+
+}  // namespace fognav::perception::internal
+
+#endif  // FOGNAV_PERCEPTION_INTERNAL_LINE_EXTRACTION_H_

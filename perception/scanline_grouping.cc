@@ -1,0 +1,517 @@
+// Plane segmentation by extended scan-line grouping (paper Sections 3.3-3.5) and the segment
+// picture.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+#include "perception/internal/line_extraction.h"
+#include "perception/internal/plane_moments.h"
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::FitPlane;
+using internal::LineSegment;
+using internal::LineSet;
+using internal::Moments;
+using internal::PlaneFit;
+using internal::Rms;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A planar region under construction: its moments and current fit.
+struct Region {
+  Moments m;
+  PlaneFit fit;
+  double sigma = 0;  // RMS residual of its own points, floored (used when trading and merging)
+  int lines = 0;
+};
+
+// Buffers reused across calls on one thread, so that a call allocates only its output.
+struct Workspace {
+  LineSet line_set;
+  internal::ScanlineScratch scratch;
+  std::vector<int> order;
+  std::vector<int> open;
+  std::vector<Region> regions;
+  std::vector<int> queue;
+  std::vector<uint8_t> visits;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> parent;
+  std::vector<int> final_index;
+};
+
+class Grouper {
+ public:
+  Grouper(const PointImage& points, const SegmentParams& p, Workspace* ws)
+      : points_(points), p_(p), ws_(*ws), ls_(ws->line_set), lines_(ws->line_set.lines) {}
+
+  PlaneSet Run() {
+    internal::ExtractLines(points_, p_, &ls_, &ws_.scratch);
+    ws_.regions.clear();
+    GroupLines();
+    if (p_.trade_lines) TradeLines();
+    PlaneSet out;
+    out.labels = LabelImage(points_.width, points_.height, -1);
+    LabelLines(&out.labels);
+    RefitAll();
+    if (p_.trade_points) TradePoints(&out.labels);
+    RefitAll();
+    ws_.parent.resize(ws_.regions.size());
+    std::iota(ws_.parent.begin(), ws_.parent.end(), 0);
+    if (p_.merge_planes) MergePlanes(out.labels);
+    Finish(&out);
+    return out;
+  }
+
+ private:
+  // the r_sigma test of eq. (13)/(14), or the UB method's end point test with d_line
+  bool Fits(const LineSegment& l, const PlaneFit& f, double r_max) const {
+    if (!f.ok) return false;
+    if (p_.method == LineMethod::kSplit) {
+      return std::abs(l.p_first.dot(f.n) - f.dist) < p_.d_line &&
+             std::abs(l.p_last.dot(f.n) - f.dist) < p_.d_line;
+    }
+    return Rms(l.m, f.n, f.dist) < r_max * std::max(l.sigma, p_.sigma_min);  // eq. (10)
+  }
+
+  // calls fn(index) for each line of row s whose columns overlap [b, e]
+  template <typename Fn>
+  void ForOverlapping(int s, int b, int e, Fn fn) {
+    if (s < 0 || s >= ls_.height) return;
+    for (int i = ls_.row_begin[size_t(s)], end = ls_.row_begin[size_t(s) + 1]; i < end; ++i) {
+      const LineSegment& l = lines_[size_t(i)];
+      if (l.e < b) continue;
+      if (l.b > e) break;
+      fn(i);
+    }
+  }
+
+  // seed selection (eq. 12-13) in order of decreasing line length, then region growing (eq. 14)
+  void GroupLines() {
+    std::vector<int>& order = ws_.order;
+    order.resize(lines_.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return lines_[size_t(a)].m.n > lines_[size_t(b)].m.n; });
+    for (int mid : order) {
+      const LineSegment& l2 = lines_[size_t(mid)];
+      if (l2.plane >= 0) continue;
+      int seed1 = -1, seed3 = -1;
+      PlaneFit seed_fit;
+      ForOverlapping(l2.s - 1, l2.b, l2.e, [&](int i1) {
+        if (seed1 >= 0 || lines_[size_t(i1)].plane >= 0) return;
+        ForOverlapping(l2.s + 1, l2.b, l2.e, [&](int i3) {
+          if (seed1 >= 0 || lines_[size_t(i3)].plane >= 0) return;
+          const LineSegment& l1 = lines_[size_t(i1)];
+          const LineSegment& l3 = lines_[size_t(i3)];
+          Moments m = l1.m;  // eq. (12)
+          m.Add(l2.m);
+          m.Add(l3.m);
+          const PlaneFit f = FitPlane(m);
+          if (Fits(l1, f, p_.r_seed) && Fits(l2, f, p_.r_seed) && Fits(l3, f, p_.r_seed)) {
+            seed1 = i1;
+            seed3 = i3;
+            seed_fit = f;
+          }
+        });
+      });
+      if (seed1 < 0) continue;
+      Grow(seed1, mid, seed3, seed_fit);
+    }
+  }
+
+  void Grow(int i1, int i2, int i3, const PlaneFit& fit) {
+    const int id = int(ws_.regions.size());
+    ws_.regions.emplace_back();
+    Region& r = ws_.regions.back();
+    r.fit = fit;
+    std::vector<int>& open = ws_.open;
+    open.clear();
+    for (int i : {i1, i2, i3}) {
+      lines_[size_t(i)].plane = id;
+      r.m.Add(lines_[size_t(i)].m);
+      ++r.lines;
+      open.push_back(i);
+    }
+    while (!open.empty()) {
+      const int c = open.back();
+      open.pop_back();
+      const LineSegment lc = lines_[size_t(c)];
+      for (int s : {lc.s - 1, lc.s + 1}) {
+        ForOverlapping(s, lc.b, lc.e, [&](int i) {
+          LineSegment& l = lines_[size_t(i)];
+          if (l.plane >= 0 || !Fits(l, r.fit, p_.r_grow)) return;
+          l.plane = id;
+          r.m.Add(l.m);  // eq. (7)
+          ++r.lines;
+          const PlaneFit f = FitPlane(r.m);
+          if (f.ok) r.fit = f;
+          open.push_back(i);
+        });
+      }
+    }
+  }
+
+  // trading line segments: a line at a region border moves to the neighbouring region it fits
+  // better (RMS of eq. 9); lines in no region join the best-fitting neighbour that accepts them
+  void TradeLines() {
+    // a move refits two planes, which may make other moves worthwhile: a few passes
+    constexpr int kMaxPasses = 4;
+    for (int pass = 0; pass < kMaxPasses && TradeLinesPass(); ++pass) {
+    }
+  }
+
+  bool TradeLinesPass() {
+    bool moved = false;
+    for (size_t i = 0; i < lines_.size(); ++i) {
+      LineSegment& l = lines_[i];
+      const int own = l.plane;
+      double best_cost = kInf;
+      int best = -1;
+      if (own >= 0) {
+        if (ws_.regions[size_t(own)].lines <= 3) continue;
+        best_cost = Rms(l.m, ws_.regions[size_t(own)].fit.n, ws_.regions[size_t(own)].fit.dist);
+        best = own;
+      }
+      for (int s : {l.s - 1, l.s + 1}) {
+        ForOverlapping(s, l.b, l.e, [&](int j) {
+          const int q = lines_[size_t(j)].plane;
+          if (q < 0 || q == own || q == best) return;
+          const Region& rq = ws_.regions[size_t(q)];
+          if (!Fits(l, rq.fit, p_.r_grow)) return;
+          const double cost = Rms(l.m, rq.fit.n, rq.fit.dist);
+          if (cost < best_cost) {
+            best_cost = cost;
+            best = q;
+          }
+        });
+      }
+      if (best == own || best < 0) continue;
+      if (own >= 0) {
+        Region& ro = ws_.regions[size_t(own)];
+        ro.m.Subtract(l.m);  // eq. (7), subtracting
+        --ro.lines;
+        const PlaneFit f = FitPlane(ro.m);
+        if (f.ok) ro.fit = f;
+      }
+      Region& rb = ws_.regions[size_t(best)];
+      rb.m.Add(l.m);
+      ++rb.lines;
+      const PlaneFit f = FitPlane(rb.m);
+      if (f.ok) rb.fit = f;
+      l.plane = best;
+      moved = true;
+    }
+    return moved;
+  }
+
+  void LabelLines(LabelImage* labels) const {
+    const int w = ls_.width;
+    for (const LineSegment& l : lines_) {
+      if (l.plane < 0) continue;
+      int32_t* row = &labels->data[size_t(l.s) * w];
+      const uint8_t* valid = &ls_.valid[size_t(l.s) * w];
+      for (int u = l.b; u <= l.e; ++u)
+        if (valid[u]) row[u] = l.plane;
+    }
+  }
+
+  void RefitAll() {
+    for (Region& r : ws_.regions) {
+      const PlaneFit f = FitPlane(r.m);
+      if (f.ok) r.fit = f;
+      r.sigma = std::max(r.fit.ok ? Rms(r.m, r.fit.n, r.fit.dist) : 0.0, p_.sigma_min);
+    }
+  }
+
+  // trading points: border points (and unsegmented points next to a region) move to the
+  // neighbouring region whose plane has the smallest RMS over the window statistics around the
+  // point; a point joins a region only if it lies within r_grow of that region's sigma
+  void TradePoints(LabelImage* labels) {
+    const int w = ls_.width, h = ls_.height;
+    const int half = std::max(p_.trade_window, 1) / 2;
+    const std::vector<uint8_t>& valid = ls_.valid;
+    int32_t* lab = labels->data.data();
+    std::vector<int>& queue = ws_.queue;
+    std::vector<uint8_t>& visits = ws_.visits;
+    queue.clear();
+    visits.assign(size_t(w) * h, 0);
+    constexpr uint8_t kQueued = 0x80;
+    constexpr int kMaxVisits = 3;
+
+    auto differs = [&](int i, int j) { return valid[size_t(j)] && lab[j] != lab[i]; };
+    for (int v = 0; v < h; ++v) {
+      for (int u = 0; u < w; ++u) {
+        const int i = v * w + u;
+        if (!valid[size_t(i)]) continue;
+        const bool border = (u > 0 && differs(i, i - 1)) || (u + 1 < w && differs(i, i + 1)) ||
+                            (v > 0 && differs(i, i - w)) || (v + 1 < h && differs(i, i + w));
+        if (!border) continue;
+        queue.push_back(i);
+        visits[size_t(i)] |= kQueued;
+      }
+    }
+
+    int cands[5];
+    for (size_t head = 0; head < queue.size(); ++head) {
+      const int i = queue[head];
+      visits[size_t(i)] = uint8_t((visits[size_t(i)] & ~kQueued) + 1);
+      const int u = i % w, v = i / w;
+      const int own = lab[i];
+      // candidate regions: the labels of the 4 neighbours
+      int nc = 0;
+      auto add = [&](int j) {
+        if (!valid[size_t(j)] || lab[j] < 0 || lab[j] == own) return;
+        for (int k = 0; k < nc; ++k)
+          if (cands[k] == lab[j]) return;
+        cands[nc++] = lab[j];
+      };
+      if (u > 0) add(i - 1);
+      if (u + 1 < w) add(i + 1);
+      if (v > 0) add(i - w);
+      if (v + 1 < h) add(i + w);
+      if (nc == 0) continue;
+
+      // window statistics N, b, A around the point
+      Moments win;
+      const int v0 = std::max(v - half, 0), v1 = std::min(v + half, h - 1);
+      const int u0 = std::max(u - half, 0), u1 = std::min(u + half, w - 1);
+      double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+      int n = 0;
+      for (int vv = v0; vv <= v1; ++vv) {
+        const Eigen::Vector3f* prow = &points_.points[size_t(vv) * w];
+        const uint8_t* vrow = &valid[size_t(vv) * w];
+        for (int uu = u0; uu <= u1; ++uu) {
+          if (!vrow[uu]) continue;
+          const double x = prow[uu].x(), y = prow[uu].y(), z = prow[uu].z();
+          ++n;
+          sx += x, sy += y, sz += z;
+          sxx += x * x, sxy += x * y, sxz += x * z, syy += y * y, syz += y * z, szz += z * z;
+        }
+      }
+      win.n = n;
+      win.b = Eigen::Vector3d(sx, sy, sz);
+      win.A << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
+      const Eigen::Vector3d x = points_.points[size_t(i)].cast<double>();
+
+      // a candidate must hold the point itself within r_grow of its sigma and, against a region
+      // the point already has, closer in units of sigma; the window RMS then decides (the
+      // window alone favours the plane with the denser points at an edge)
+      int best = own;
+      double best_cost = kInf, own_ratio = p_.r_grow;
+      if (own >= 0) {
+        const Region& r = ws_.regions[size_t(own)];
+        best_cost = Rms(win, r.fit.n, r.fit.dist);
+        own_ratio = std::min(own_ratio, std::abs(x.dot(r.fit.n) - r.fit.dist) / r.sigma);
+      }
+      for (int k = 0; k < nc; ++k) {
+        const Region& r = ws_.regions[size_t(cands[k])];
+        if (!r.fit.ok || std::abs(x.dot(r.fit.n) - r.fit.dist) > own_ratio * r.sigma) continue;
+        const double cost = Rms(win, r.fit.n, r.fit.dist);
+        if (cost < best_cost) {
+          best_cost = cost;
+          best = cands[k];
+        }
+      }
+      if (best == own) continue;
+
+      // move the point (eq. 7 with a single point) and revisit its neighbours
+      if (own >= 0) ws_.regions[size_t(own)].m.Subtract(x);
+      ws_.regions[size_t(best)].m.Add(x);
+      lab[i] = best;
+      auto push = [&](int j) {
+        uint8_t& vis = visits[size_t(j)];
+        if (!valid[size_t(j)] || (vis & kQueued) || (vis & ~kQueued) >= kMaxVisits) return;
+        vis |= kQueued;
+        queue.push_back(j);
+      };
+      if (u > 0) push(i - 1);
+      if (u + 1 < w) push(i + 1);
+      if (v > 0) push(i - w);
+      if (v + 1 < h) push(i + w);
+    }
+  }
+
+  int Root(int a) {
+    while (ws_.parent[size_t(a)] != a) {
+      ws_.parent[size_t(a)] = ws_.parent[size_t(ws_.parent[size_t(a)])];
+      a = ws_.parent[size_t(a)];
+    }
+    return a;
+  }
+
+  // merging planes: neighbouring regions whose joint plane fits each of them within r_seed of
+  // its own RMS (the seed test of eq. 13 with regions in place of lines)
+  void MergePlanes(const LabelImage& labels) {
+    const int w = labels.width, h = labels.height;
+    std::vector<std::pair<int, int>>& pairs = ws_.pairs;
+    pairs.clear();
+    const int32_t* lab = labels.data.data();
+    for (int v = 0; v < h; ++v) {
+      for (int u = 0; u < w; ++u) {
+        const int a = lab[v * w + u];
+        if (a < 0) continue;
+        if (u + 1 < w) {
+          const int b = lab[v * w + u + 1];
+          if (b >= 0 && b != a) pairs.emplace_back(std::min(a, b), std::max(a, b));
+        }
+        if (v + 1 < h) {
+          const int b = lab[(v + 1) * w + u];
+          if (b >= 0 && b != a) pairs.emplace_back(std::min(a, b), std::max(a, b));
+        }
+      }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    MergePairs(pairs);
+    if (!p_.merge_coplanar) return;
+    // coplanar regions apart in the image: every remaining pair
+    pairs.clear();
+    const int nr = int(ws_.regions.size());
+    for (int a = 0; a < nr; ++a)
+      for (int b = a + 1; b < nr; ++b)
+        if (Root(a) == a && Root(b) == b) pairs.emplace_back(a, b);
+    MergePairs(pairs);
+  }
+
+  void MergePairs(const std::vector<std::pair<int, int>>& pairs) {
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (const auto& [pa, pb] : pairs) {
+        const int a = Root(pa), b = Root(pb);
+        if (a == b) continue;
+        Region& ra = ws_.regions[size_t(a)];
+        Region& rb = ws_.regions[size_t(b)];
+        Moments m = ra.m;
+        m.Add(rb.m);
+        const PlaneFit f = FitPlane(m);
+        if (!f.ok || Rms(ra.m, f.n, f.dist) >= p_.r_seed * ra.sigma ||
+            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma)
+          continue;
+        ra.m = m;
+        ra.fit = f;
+        ra.sigma = std::max(Rms(m, f.n, f.dist), p_.sigma_min);
+        ra.lines += rb.lines;
+        rb.m = Moments();
+        ws_.parent[size_t(b)] = a;
+        changed = true;
+      }
+    }
+  }
+
+  // final planes: merged labels, small or degenerate regions dropped, sorted by size, borders
+  void Finish(PlaneSet* out) {
+    const int nr = int(ws_.regions.size());
+    std::vector<int>& idx = ws_.final_index;
+    idx.assign(size_t(nr), -1);
+    std::vector<int> keep;
+    for (int r = 0; r < nr; ++r) {
+      if (Root(r) != r) continue;
+      const Region& reg = ws_.regions[size_t(r)];
+      if (reg.m.n < std::max(p_.min_plane_points, 3)) continue;
+      if (!FitPlane(reg.m).ok) continue;
+      keep.push_back(r);
+    }
+    std::stable_sort(keep.begin(), keep.end(), [&](int a, int b) {
+      return ws_.regions[size_t(a)].m.n > ws_.regions[size_t(b)].m.n;
+    });
+    out->planes.resize(keep.size());
+    for (size_t k = 0; k < keep.size(); ++k) {
+      const Region& reg = ws_.regions[size_t(keep[k])];
+      idx[size_t(keep[k])] = int(k);
+      Plane& pl = out->planes[k];
+      const PlaneFit f = FitPlane(reg.m);
+      pl.n = f.n;
+      pl.d = f.dist;
+      pl.num_points = reg.m.n;
+      pl.b = reg.m.b;
+      pl.A = reg.m.A;
+      pl.rms = Rms(reg.m, f.n, f.dist);
+    }
+    for (int r = 0; r < nr; ++r) idx[size_t(r)] = idx[size_t(Root(r))];
+
+    // relabel and collect the border per scan line
+    const int w = out->labels.width, h = out->labels.height;
+    std::vector<int> first(keep.size(), -1), last(keep.size(), -1);
+    std::vector<int> touched;
+    for (int v = 0; v < h; ++v) {
+      int32_t* row = &out->labels.data[size_t(v) * w];
+      touched.clear();
+      for (int u = 0; u < w; ++u) {
+        if (row[u] < 0) continue;
+        const int k = idx[size_t(row[u])];
+        row[u] = k;
+        if (k < 0) continue;
+        if (first[size_t(k)] < 0) {
+          first[size_t(k)] = u;
+          touched.push_back(k);
+        }
+        last[size_t(k)] = u;
+      }
+      for (int k : touched) {
+        out->planes[size_t(k)].border.push_back({v, first[size_t(k)], last[size_t(k)]});
+        first[size_t(k)] = -1;
+      }
+    }
+  }
+
+  const PointImage& points_;
+  const SegmentParams& p_;
+  Workspace& ws_;
+  LineSet& ls_;
+  std::vector<LineSegment>& lines_;
+};
+
+}  // namespace
+
+PlaneSet SegmentPlanes(const PointImage& points, const SegmentParams& p) {
+  thread_local Workspace ws;
+  if (points.width <= 0 || points.height <= 0) {
+    PlaneSet empty;
+    empty.labels = LabelImage(std::max(points.width, 0), std::max(points.height, 0), -1);
+    return empty;
+  }
+  return Grouper(points, p, &ws).Run();
+}
+
+RgbImage DrawSegments(const PlaneSet& planes) {
+  const LabelImage& lab = planes.labels;
+  RgbImage out(lab.width, lab.height, Rgb{255, 255, 255});
+  // distinct colours by golden-ratio hue steps, bright and saturated
+  auto colour = [](int k) {
+    const double hue = std::fmod(0.13 + 0.618033988749895 * k, 1.0) * 6.0;
+    const double sat = (k % 3 == 2) ? 0.45 : 0.75, val = (k % 2) ? 0.8 : 0.97;
+    const int sector = int(hue);
+    const double f = hue - sector;
+    const double pp = val * (1 - sat), q = val * (1 - sat * f), t = val * (1 - sat * (1 - f));
+    double r = 0, g = 0, b = 0;
+    switch (sector % 6) {
+      case 0: r = val, g = t, b = pp; break;
+      case 1: r = q, g = val, b = pp; break;
+      case 2: r = pp, g = val, b = t; break;
+      case 3: r = pp, g = q, b = val; break;
+      case 4: r = t, g = pp, b = val; break;
+      default: r = val, g = pp, b = q; break;
+    }
+    return Rgb{uint8_t(255 * r), uint8_t(255 * g), uint8_t(255 * b)};
+  };
+  for (int v = 0; v < lab.height; ++v) {
+    for (int u = 0; u < lab.width; ++u) {
+      const int k = lab.at(u, v);
+      if (k < 0) continue;
+      // a border pixel has a 4-neighbour outside its plane
+      const bool border = u == 0 || v == 0 || u + 1 == lab.width || v + 1 == lab.height ||
+                          lab.at(u - 1, v) != k || lab.at(u + 1, v) != k ||
+                          lab.at(u, v - 1) != k || lab.at(u, v + 1) != k;
+      out.at(u, v) = border ? Rgb{0, 0, 0} : colour(k);
+    }
+  }
+  return out;
+}
+
+}  // namespace fognav::perception

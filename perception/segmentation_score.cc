@@ -1,0 +1,174 @@
+// Segmentation scores against ground-truth surfaces: Table 2 accuracy, coverage and the counts
+// of Hoover et al. (1996).
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+#include <vector>
+
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+// Maps arbitrary non-negative ids to 0..n-1 in order of first appearance.
+class IdMap {
+ public:
+  int Index(int32_t id) {
+    auto [it, inserted] = map_.try_emplace(id, int(ids_.size()));
+    if (inserted) ids_.push_back(id);
+    return it->second;
+  }
+  int size() const { return int(ids_.size()); }
+
+ private:
+  std::unordered_map<int32_t, int> map_;
+  std::vector<int32_t> ids_;
+};
+
+void Ratios(SegmentationScore* s) {
+  s->accuracy = s->segment_px > 0 ? double(s->overlap_px) / double(s->segment_px) : 0.0;
+  s->coverage = s->surface_px > 0 ? double(s->overlap_px) / double(s->surface_px) : 0.0;
+}
+
+}  // namespace
+
+SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& truth_surface_ids,
+                                    const DepthImage& truth_depth_m, const ScoreParams& p) {
+  SegmentationScore score;
+  const size_t npx = labels.data.size();
+  if (truth_surface_ids.data.size() != npx || truth_depth_m.data.size() != npx) return score;
+
+  // compact ids, pixel counts and the overlap table
+  IdMap seg_ids, truth_ids;
+  std::vector<int> seg_of(npx, -1), truth_of(npx, -1);
+  for (size_t i = 0; i < npx; ++i) {
+    if (labels.data[i] >= 0) seg_of[i] = seg_ids.Index(labels.data[i]);
+    if (truth_surface_ids.data[i] >= 0) truth_of[i] = truth_ids.Index(truth_surface_ids.data[i]);
+  }
+  const int ns = seg_ids.size(), ng = truth_ids.size();
+  std::vector<int64_t> seg_px(size_t(ns), 0), truth_px(size_t(ng), 0);
+  std::vector<int64_t> overlap(size_t(ns) * ng, 0);  // [s * ng + g]
+  std::vector<std::vector<float>> depths(static_cast<size_t>(ng));
+  for (size_t i = 0; i < npx; ++i) {
+    const int s = seg_of[i], g = truth_of[i];
+    if (s >= 0) ++seg_px[size_t(s)];
+    if (g >= 0) {
+      ++truth_px[size_t(g)];
+      if (std::isfinite(truth_depth_m.data[i])) depths[size_t(g)].push_back(truth_depth_m.data[i]);
+    }
+    if (s >= 0 && g >= 0) ++overlap[size_t(s) * ng + g];
+  }
+  score.planes = ns;
+
+  // scored surfaces: at least min_surface_px pixels, median depth within max_depth_m
+  std::vector<uint8_t> scored(size_t(ng), 0);
+  for (int g = 0; g < ng; ++g) {
+    std::vector<float>& d = depths[size_t(g)];
+    if (truth_px[size_t(g)] < p.min_surface_px || d.empty()) continue;
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    if (d[d.size() / 2] > p.max_depth_m) continue;
+    scored[size_t(g)] = 1;
+    ++score.truth_surfaces;
+  }
+
+  // Table 2 accuracy and coverage over each scored surface's best-overlapping segment
+  for (int g = 0; g < ng; ++g) {
+    if (!scored[size_t(g)]) continue;
+    int best = -1;
+    int64_t best_ov = 0;
+    for (int s = 0; s < ns; ++s) {
+      if (overlap[size_t(s) * ng + g] > best_ov) {
+        best_ov = overlap[size_t(s) * ng + g];
+        best = s;
+      }
+    }
+    score.surface_px += truth_px[size_t(g)];
+    if (best < 0) continue;
+    score.overlap_px += best_ov;
+    score.segment_px += seg_px[size_t(best)];
+  }
+  Ratios(&score);
+
+  // Hoover et al.: segments that lie at least half on scored surfaces take part
+  std::vector<uint8_t> seg_in(size_t(ns), 0);
+  for (int s = 0; s < ns; ++s) {
+    int64_t on = 0;
+    for (int g = 0; g < ng; ++g)
+      if (scored[size_t(g)]) on += overlap[size_t(s) * ng + g];
+    seg_in[size_t(s)] = 2 * on >= seg_px[size_t(s)];
+  }
+  const double t = p.tolerance;
+  auto ov = [&](int s, int g) { return double(overlap[size_t(s) * ng + g]); };
+  std::vector<uint8_t> seg_used(size_t(ns), 0), truth_used(size_t(ng), 0);
+  // correct detection: O >= T |S| and O >= T |G|
+  for (int g = 0; g < ng; ++g) {
+    if (!scored[size_t(g)]) continue;
+    for (int s = 0; s < ns; ++s) {
+      if (!seg_in[size_t(s)] || seg_used[size_t(s)]) continue;
+      if (ov(s, g) >= t * seg_px[size_t(s)] && ov(s, g) >= t * truth_px[size_t(g)]) {
+        ++score.correct;
+        seg_used[size_t(s)] = truth_used[size_t(g)] = 1;
+        break;
+      }
+    }
+  }
+  // over-segmentation: >= 2 segments each O >= T |S_i| whose overlaps sum to >= T |G|
+  for (int g = 0; g < ng; ++g) {
+    if (!scored[size_t(g)] || truth_used[size_t(g)]) continue;
+    int count = 0;
+    double sum = 0;
+    for (int s = 0; s < ns; ++s) {
+      if (!seg_in[size_t(s)] || seg_used[size_t(s)] || ov(s, g) < t * seg_px[size_t(s)]) continue;
+      ++count;
+      sum += ov(s, g);
+    }
+    if (count < 2 || sum < t * truth_px[size_t(g)]) continue;
+    ++score.over;
+    truth_used[size_t(g)] = 1;
+    for (int s = 0; s < ns; ++s)
+      if (seg_in[size_t(s)] && !seg_used[size_t(s)] && ov(s, g) >= t * seg_px[size_t(s)])
+        seg_used[size_t(s)] = 1;
+  }
+  // under-segmentation: a segment over >= 2 surfaces each O >= T |G_i|, summing to >= T |S|
+  for (int s = 0; s < ns; ++s) {
+    if (!seg_in[size_t(s)] || seg_used[size_t(s)]) continue;
+    int count = 0;
+    double sum = 0;
+    for (int g = 0; g < ng; ++g) {
+      if (!scored[size_t(g)] || truth_used[size_t(g)] || ov(s, g) < t * truth_px[size_t(g)])
+        continue;
+      ++count;
+      sum += ov(s, g);
+    }
+    if (count < 2 || sum < t * seg_px[size_t(s)]) continue;
+    ++score.under;
+    seg_used[size_t(s)] = 1;
+    for (int g = 0; g < ng; ++g)
+      if (scored[size_t(g)] && !truth_used[size_t(g)] && ov(s, g) >= t * truth_px[size_t(g)])
+        truth_used[size_t(g)] = 1;
+  }
+  // the rest: missed surfaces and noise segments
+  for (int g = 0; g < ng; ++g) score.missed += scored[size_t(g)] && !truth_used[size_t(g)];
+  for (int s = 0; s < ns; ++s) score.noise += seg_in[size_t(s)] && !seg_used[size_t(s)];
+  return score;
+}
+
+SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores) {
+  SegmentationScore total;
+  for (const SegmentationScore& s : scores) {
+    total.correct += s.correct;
+    total.over += s.over;
+    total.under += s.under;
+    total.missed += s.missed;
+    total.noise += s.noise;
+    total.planes += s.planes;
+    total.truth_surfaces += s.truth_surfaces;
+    total.overlap_px += s.overlap_px;
+    total.segment_px += s.segment_px;
+    total.surface_px += s.surface_px;
+  }
+  Ratios(&total);
+  return total;
+}
+
+}  // namespace fognav::perception

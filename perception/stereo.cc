@@ -1,0 +1,134 @@
+// Range data: stereo matching, depth images, sub-sampling and false-colour disparity pictures.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+cv::Mat ToMat(const RgbImage& image) {
+  cv::Mat mat(image.height, image.width, CV_8UC3);
+  for (int v = 0; v < image.height; ++v) {
+    auto* row = mat.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < image.width; ++u) {
+      const Rgb& c = image.at(u, v);
+      row[u] = cv::Vec3b(c.b, c.g, c.r);
+    }
+  }
+  return mat;
+}
+
+template <typename T>
+Image<T> SubsampleImage(const Image<T>& in) {
+  Image<T> out(in.width / 2, in.height / 2);
+  for (int v = 0; v < out.height; ++v)
+    for (int u = 0; u < out.width; ++u) out.at(u, v) = in.at(2 * u, 2 * v);
+  return out;
+}
+
+}  // namespace
+
+PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const CameraIntrinsics& K,
+                            const StereoParams& p, Image<float>* disparity_px) {
+  const int w = left.width, h = left.height;
+  PointImage points(w, h);
+  if (disparity_px) *disparity_px = Image<float>(w, h, kNaN);
+  if (w == 0 || h == 0 || right.width != w || right.height != h) return points;
+
+  // semi-global matching, optionally on images padded on the left
+  const int pad = p.pad_left ? p.min_disparity + p.num_disparities : 0;
+  cv::Mat l = ToMat(left), r = ToMat(right);
+  if (pad > 0) {
+    cv::copyMakeBorder(l, l, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+    cv::copyMakeBorder(r, r, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+  }
+  const int area = p.block_size * p.block_size * 3;
+  auto sgbm = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size,
+                                     p.p1 > 0 ? p.p1 : 8 * area, p.p2 > 0 ? p.p2 : 32 * area,
+                                     p.disp12_max_diff, p.pre_filter_cap, p.uniqueness_ratio,
+                                     p.speckle_window_size, p.speckle_range,
+                                     p.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM);
+  cv::Mat disp16;
+  sgbm->compute(l, r, disp16);
+
+  // triangulate: z = f B / disparity, x = (u - cx) z / fx, y = (v - cy) z / fy
+  const double fb = K.fx * K.baseline;
+  const double min_disp = fb / p.max_depth;
+  for (int v = 0; v < h; ++v) {
+    const int16_t* row = disp16.ptr<int16_t>(v) + pad;
+    for (int u = 0; u < w; ++u) {
+      const int raw = row[u];
+      if (raw <= 0) continue;
+      const double disp = raw / 16.0;
+      if (disp < min_disp) continue;
+      const double z = fb / disp;
+      points.at(u, v) = Eigen::Vector3f(float((u - K.cx) * z / K.fx),
+                                        float((v - K.cy) * z / K.fy), float(z));
+      if (disparity_px) disparity_px->at(u, v) = float(disp);
+    }
+  }
+  return points;
+}
+
+PointImage DepthPointImage(const DepthImage& depth_m, const CameraIntrinsics& K) {
+  PointImage points(depth_m.width, depth_m.height);
+  for (int v = 0; v < depth_m.height; ++v) {
+    for (int u = 0; u < depth_m.width; ++u) {
+      const double z = depth_m.at(u, v);
+      if (!(z > 0) || !std::isfinite(z)) continue;
+      points.at(u, v) = Eigen::Vector3f(float((u - K.cx) * z / K.fx),
+                                        float((v - K.cy) * z / K.fy), float(z));
+    }
+  }
+  return points;
+}
+
+PointImage Subsample2x(const PointImage& points) {
+  PointImage out(points.width / 2, points.height / 2);
+  for (int v = 0; v < out.height; ++v)
+    for (int u = 0; u < out.width; ++u) out.at(u, v) = points.at(2 * u, 2 * v);
+  return out;
+}
+
+LabelImage Subsample2x(const LabelImage& labels) { return SubsampleImage(labels); }
+
+DepthImage Subsample2x(const DepthImage& depth) { return SubsampleImage(depth); }
+
+CameraIntrinsics Subsample2x(const CameraIntrinsics& K) {
+  CameraIntrinsics out = K;
+  out.width_px = K.width_px / 2;
+  out.height_px = K.height_px / 2;
+  out.fx = K.fx / 2;
+  out.fy = K.fy / 2;
+  out.cx = K.cx / 2;
+  out.cy = K.cy / 2;
+  return out;
+}
+
+RgbImage DrawDisparity(const Image<float>& disparity_px) {
+  RgbImage out(disparity_px.width, disparity_px.height);
+  float max_disp = 0;
+  for (float d : disparity_px.data)
+    if (std::isfinite(d)) max_disp = std::max(max_disp, d);
+  if (max_disp <= 0) return out;
+  // jet colour map over [0, max]: blue (far) -> cyan -> yellow -> red (near)
+  auto channel = [](double x) {
+    return uint8_t(std::lround(255 * std::clamp(1.5 - std::abs(x), 0.0, 1.0)));
+  };
+  for (size_t i = 0; i < out.data.size(); ++i) {
+    const float d = disparity_px.data[i];
+    if (!std::isfinite(d)) continue;
+    const double t = 4.0 * d / max_disp;
+    out.data[i] = Rgb{channel(t - 3), channel(t - 2), channel(t - 1)};
+  }
+  return out;
+}
+
+}  // namespace fognav::perception

@@ -1,0 +1,291 @@
+// Scan-line grouping on analytic range images built in code.
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "perception/internal/scanline_scenes.h"
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::AddDepthNoise;
+using internal::RenderScene;
+using internal::Scene;
+using internal::SceneBox;
+using internal::SceneCamera;
+using internal::SceneIntrinsics;
+using internal::SceneView;
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The analytic plane n . p = d (camera frame, n towards the camera) of surface `id`.
+void TruthPlane(const Scene& scene, const Eigen::Isometry3d& X_WC, int id, Eigen::Vector3d* n_C,
+                double* d_C) {
+  Eigen::Vector3d n_W(0, 0, 1);
+  double c = 0;
+  if (id > 0) {
+    const int i = (id - 1) / 6, f = (id - 1) % 6, a = f / 2;
+    const double sign = f % 2 ? 1.0 : -1.0;
+    n_W = Eigen::Vector3d::Zero();
+    n_W[a] = sign;
+    c = sign * (f % 2 ? scene.boxes[size_t(i)].hi[a] : scene.boxes[size_t(i)].lo[a]);
+  }
+  *n_C = X_WC.linear().transpose() * n_W;
+  *d_C = c - n_W.dot(X_WC.translation());
+}
+
+struct SurfaceMatch {
+  int plane = -1;    // best-overlapping plane
+  int overlap = 0;   // pixels of the surface in it
+  int size = 0;      // pixels of the surface
+  int plane_px = 0;  // pixels of the plane
+};
+
+// For each truth surface, its best-overlapping plane.
+std::map<int, SurfaceMatch> MatchSurfaces(const PlaneSet& set, const LabelImage& truth) {
+  std::map<int, std::map<int, int>> counts;
+  std::map<int, int> size, plane_px;
+  for (size_t i = 0; i < truth.data.size(); ++i) {
+    if (truth.data[i] >= 0) ++size[truth.data[i]];
+    if (set.labels.data[i] >= 0) ++plane_px[set.labels.data[i]];
+    if (truth.data[i] >= 0 && set.labels.data[i] >= 0) ++counts[truth.data[i]][set.labels.data[i]];
+  }
+  std::map<int, SurfaceMatch> out;
+  for (const auto& [g, n] : size) {
+    SurfaceMatch m;
+    m.size = n;
+    for (const auto& [s, c] : counts[g])
+      if (c > m.overlap) m.overlap = c, m.plane = s;
+    if (m.plane >= 0) m.plane_px = plane_px[m.plane];
+    out[g] = m;
+  }
+  return out;
+}
+
+// Expects every truth surface of at least min_px pixels to have a plane that covers at least
+// min_cover of it, with normal within angle_tol and offset within d_tol of the analytic plane.
+void ExpectSurfacesFound(const Scene& scene, const Eigen::Isometry3d& X_WC, const SceneView& view,
+                         const PlaneSet& set, int min_px, double min_cover, double angle_tol,
+                         double d_tol) {
+  for (const auto& [g, m] : MatchSurfaces(set, view.surface)) {
+    if (m.size < min_px) continue;
+    SCOPED_TRACE("surface " + std::to_string(g) + " of " + std::to_string(m.size) + " px");
+    ASSERT_GE(m.plane, 0);
+    EXPECT_GE(double(m.overlap) / m.size, min_cover);
+    Eigen::Vector3d n;
+    double d;
+    TruthPlane(scene, X_WC, g, &n, &d);
+    const Plane& pl = set.planes[size_t(m.plane)];
+    EXPECT_LT(std::acos(std::min(1.0, pl.n.dot(n))), angle_tol);
+    EXPECT_NEAR(pl.d, d, d_tol);
+  }
+}
+
+PointImage Points(const SceneView& view, const CameraIntrinsics& K) {
+  return DepthPointImage(view.depth, K);
+}
+
+TEST(ScanlineGrouping, FindsOneFrontoParallelPlaneExactly) {
+  Scene scene;
+  scene.floor = false;
+  scene.boxes.push_back({Eigen::Vector3d(2.0, -5, -5), Eigen::Vector3d(2.5, 5, 5)});
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.5, 0);
+  const SceneView view = RenderScene(scene, K, X_WC);
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  ASSERT_EQ(set.planes.size(), 1u);
+  const Plane& pl = set.planes[0];
+  EXPECT_NEAR(pl.n.z(), -1.0, 1e-6);
+  EXPECT_NEAR(pl.d, -2.0, 1e-4);
+  EXPECT_LT(pl.rms, 1e-4);
+  EXPECT_EQ(pl.num_points, 176 * 144);
+  ASSERT_EQ(pl.border.size(), 144u);
+  EXPECT_EQ(pl.border[10].u_begin, 0);
+  EXPECT_EQ(pl.border[10].u_end, 175);
+}
+
+TEST(ScanlineGrouping, NormalsPointTowardsTheCamera) {
+  const Scene scene;  // floor only
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 35 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  ASSERT_EQ(set.planes.size(), 1u);
+  const Plane& pl = set.planes[0];
+  EXPECT_LT(pl.d, 0);
+  EXPECT_LT(pl.n.dot(pl.Centroid()), 0);  // the camera sees the side n points to
+  EXPECT_NEAR(pl.d, -0.55, 1e-4);
+  EXPECT_NEAR(pl.SignedDistance(Eigen::Vector3d::Zero()), 0.55, 1e-4);
+}
+
+TEST(ScanlineGrouping, SeparatesStepTopFrontAndFloor) {
+  Scene scene;
+  scene.boxes.push_back({Eigen::Vector3d(0.9, -0.4, 0), Eigen::Vector3d(1.4, 0.4, 0.1)});
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  // floor, front face (-x) and top (+z) of the box each come out as their own plane
+  const auto match = MatchSurfaces(set, view.surface);
+  const int floor = match.at(0).plane, front = match.at(1).plane, top = match.at(6).plane;
+  EXPECT_NE(floor, front);
+  EXPECT_NE(floor, top);
+  EXPECT_NE(front, top);
+  ExpectSurfacesFound(scene, X_WC, view, set, 50, 0.95, 0.5 * kDeg, 0.002);
+}
+
+TEST(ScanlineGrouping, SplitsStaircaseIntoTreadsAndRisers) {
+  // three 3 cm steps, 25 cm deep, seen from the humanoid's head height
+  const Scene scene = internal::Staircase(0.8, 3, 0.25, 0.03);
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  // every tread (+z) and riser (-x) is its own plane: no two share a best plane
+  const auto match = MatchSurfaces(set, view.surface);
+  std::map<int, int> owner;
+  for (int i = 0; i < 3; ++i) {
+    for (int face : {0, 5}) {
+      const int id = 1 + 6 * i + face;
+      ASSERT_TRUE(match.count(id)) << "surface " << id << " not visible";
+      const int plane = match.at(id).plane;
+      ASSERT_GE(plane, 0) << "surface " << id;
+      EXPECT_FALSE(owner.count(plane)) << "surfaces " << id << " and " << owner[plane]
+                                       << " share plane " << plane;
+      owner[plane] = id;
+    }
+  }
+  ExpectSurfacesFound(scene, X_WC, view, set, 50, 0.9, 1.0 * kDeg, 0.003);
+  const SegmentationScore score = ScoreSegmentation(set.labels, view.surface, view.depth);
+  EXPECT_GE(score.accuracy, 0.98);
+  EXPECT_GE(score.coverage, 0.95);
+  EXPECT_EQ(score.correct, score.truth_surfaces);
+}
+
+TEST(ScanlineGrouping, SplitsStaircaseWithTheUbMethodToo) {
+  const Scene scene = internal::Staircase(0.8, 3, 0.25, 0.03);
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+  SegmentParams p;
+  p.method = LineMethod::kSplit;
+  p.d_cord = 0.005;
+  p.d_line = 0.01;
+
+  const PlaneSet set = SegmentPlanes(Points(view, K), p);
+
+  ExpectSurfacesFound(scene, X_WC, view, set, 50, 0.9, 1.0 * kDeg, 0.003);
+}
+
+TEST(ScanlineGrouping, HandlesNoiseThatGrowsWithDistance) {
+  // floor and a wall 2.2 m away, depth noise 4 mm at 1 m (16 mm at 2 m)
+  Scene scene;
+  scene.boxes.push_back({Eigen::Vector3d(2.2, -3, 0), Eigen::Vector3d(2.4, 3, 2)});
+  scene.boxes.push_back({Eigen::Vector3d(0.9, -0.3, 0), Eigen::Vector3d(1.3, 0.3, 0.06)});
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 20 * kDeg);
+  SceneView view = RenderScene(scene, K, X_WC);
+  AddDepthNoise(&view.depth, 0.004, 7);
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  // floor, wall, step top and front: normals within 3°, offsets within 2 cm
+  ExpectSurfacesFound(scene, X_WC, view, set, 150, 0.75, 3 * kDeg, 0.02);
+  const SegmentationScore score = ScoreSegmentation(set.labels, view.surface, view.depth);
+  EXPECT_GE(score.accuracy, 0.95);
+  EXPECT_GE(score.coverage, 0.85);
+}
+
+TEST(ScanlineGrouping, BridgesNanHoles) {
+  Scene scene;
+  scene.floor = false;
+  scene.boxes.push_back({Eigen::Vector3d(1.5, -5, -5), Eigen::Vector3d(2.5, 5, 5)});
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0, 0);
+  SceneView view = RenderScene(scene, K, X_WC);
+  // a rectangular hole and 10 % random single-pixel holes
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> uni(0, 1);
+  for (int v = 0; v < 144; ++v)
+    for (int u = 0; u < 176; ++u)
+      if ((u >= 60 && u < 100 && v >= 50 && v < 80) || uni(rng) < 0.1)
+        view.depth.at(u, v) = std::numeric_limits<float>::quiet_NaN();
+
+  const PlaneSet set = SegmentPlanes(Points(view, K));
+
+  ASSERT_EQ(set.planes.size(), 1u);
+  EXPECT_NEAR(set.planes[0].n.z(), -1.0, 1e-6);
+  EXPECT_NEAR(set.planes[0].d, -1.5, 1e-4);
+  int valid = 0;
+  for (size_t i = 0; i < set.labels.data.size(); ++i) {
+    const bool has_point = std::isfinite(view.depth.data[i]);
+    valid += has_point;
+    if (!has_point) {
+      EXPECT_EQ(set.labels.data[i], -1);
+    }
+  }
+  EXPECT_GE(set.planes[0].num_points, int(0.97 * valid));
+}
+
+TEST(ScanlineGrouping, ReturnsNothingForEmptyAndAllNanImages) {
+  const PlaneSet empty = SegmentPlanes(PointImage());
+  EXPECT_TRUE(empty.planes.empty());
+  EXPECT_TRUE(empty.labels.empty());
+
+  const PlaneSet nan = SegmentPlanes(PointImage(88, 72));
+  EXPECT_TRUE(nan.planes.empty());
+  ASSERT_EQ(nan.labels.width, 88);
+  ASSERT_EQ(nan.labels.height, 72);
+  for (int32_t l : nan.labels.data) EXPECT_EQ(l, -1);
+}
+
+TEST(ScanlineGrouping, SegmentsSubsampledImages) {
+  const Scene scene = internal::Staircase(0.8, 3, 0.25, 0.03);
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+
+  // precise range settings: with the stereo sigma floor of 1 mm the two-row riser of the top
+  // step (too short to seed a plane of three lines) is absorbed into the tread below
+  const PlaneSet set = SegmentPlanes(Subsample2x(Points(view, K)), PreciseRangeParams());
+
+  ASSERT_EQ(set.labels.width, 88);
+  const SegmentationScore score = ScoreSegmentation(set.labels, Subsample2x(view.surface),
+                                                    Subsample2x(view.depth));
+  EXPECT_GE(score.accuracy, 0.97);
+  EXPECT_GE(score.coverage, 0.9);
+}
+
+TEST(ScanlineGrouping, LabelsAndBordersAgree) {
+  const Scene scene = internal::Staircase(0.8, 3, 0.25, 0.03);
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const PlaneSet set = SegmentPlanes(Points(RenderScene(scene, K, X_WC), K));
+
+  for (size_t k = 0; k < set.planes.size(); ++k) {
+    int count = 0;
+    for (int32_t l : set.labels.data) count += l == int(k);
+    EXPECT_EQ(count, set.planes[k].num_points);
+    for (const Plane::RowSpan& span : set.planes[k].border) {
+      EXPECT_EQ(set.labels.at(span.u_begin, span.v), int(k));
+      EXPECT_EQ(set.labels.at(span.u_end, span.v), int(k));
+    }
+  }
+  const RgbImage picture = DrawSegments(set);
+  EXPECT_EQ(picture.width, 176);
+  EXPECT_EQ(picture.height, 144);
+}
+
+}  // namespace
+}  // namespace fognav::perception
