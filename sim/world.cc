@@ -6,7 +6,10 @@
 namespace fognav::sim {
 namespace {
 
-// shades of the object materials; the texture's random marks give stereo something to match
+// shades of the object materials; the texture's random marks give stereo something to match.
+// MuJoCo projects a 2D texture along the box's z, so vertical faces show vertical streaks: they
+// vary along image rows, which is what horizontal stereo matching needs (a cube map was tried
+// and gives radial streaks that run along rows on tread tops).
 constexpr const char* kObjectColours[] = {"0.85 0.55 0.35", "0.45 0.65 0.85", "0.55 0.8 0.45",
                                           "0.85 0.8 0.4",   "0.75 0.5 0.75",  "0.5 0.75 0.75"};
 
@@ -28,7 +31,7 @@ std::string WorldXml(const WorldSpec& spec) {
   xml << "  <visual>\n"
          "    <global offwidth=\"1280\" offheight=\"1024\"/>\n"
          "    <quality offsamples=\"0\" shadowsize=\"2048\"/>\n"
-         "    <headlight ambient=\"0.35 0.35 0.35\" diffuse=\"0.45 0.45 0.45\" specular=\"0 0 0\"/>\n"
+         "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.5 0.5 0.5\" specular=\"0 0 0\"/>\n"
          "  </visual>\n";
   xml << "  <asset>\n"
          "    <texture name=\"fognav_floor_tex\" type=\"2d\" builtin=\"flat\" width=\"512\" height=\"512\"\n"

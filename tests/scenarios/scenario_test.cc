@@ -1,0 +1,166 @@
+#include "scenarios/scenario.h"
+
+#include <cmath>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace fognav::scenarios {
+namespace {
+
+// a valid scenario; each test changes one line
+const char* kValid = R"(name: unit
+robot:
+  start: [0.0, 0.0, 90.0]
+goal:
+  position: [3.0, 0.0]
+world:
+  floor: [6.0, 2.0]
+  floor_center: [2.0, 0.0]
+  objects:
+    - box: {name: block, center: [1.0, 0.5], size: [0.2, 0.2, 0.08]}
+    - stairs: {name: steps, start: [1.5, 0.0], width: 1.0, steps: [[0.25, 0.03], [0.3, 0.06]]}
+    - table: {name: desk, center: [2.5, 0.0], size: [0.6, 1.0], height: 0.56}
+)";
+
+std::string Replace(std::string text, const std::string& from, const std::string& to) {
+  size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// the message of the InputError that parsing `text` throws, or "" if none
+std::string ErrorOf(const std::string& text) {
+  try {
+    ParseScenario(text, "course.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scenario, ParsesAValidFileWithDefaultsAndRadians) {
+  Scenario s = ParseScenario(kValid, "course.yaml");
+  EXPECT_EQ(s.name, "unit");
+  EXPECT_NEAR(s.start.yaw, M_PI / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(s.goal_tolerance, 0.2);
+  EXPECT_EQ(s.seed, 0u);
+  EXPECT_EQ(s.sensor.width_px, 176);
+  EXPECT_NEAR(s.sensor.hfov, M_PI / 4, 1e-12);
+  EXPECT_EQ(s.sensor.depth, DepthMode::kStereo);
+  EXPECT_EQ(s.max_cycles, 600);
+  ASSERT_EQ(s.objects.size(), 3u);
+  const auto& table = std::get<TableObject>(s.objects[2]);
+  EXPECT_DOUBLE_EQ(table.top, 0.03);
+  EXPECT_DOUBLE_EQ(table.leg, 0.04);
+}
+
+TEST(Scenario, WorldHoldsExactlyTheListedSolids) {
+  Scenario s = ParseScenario(kValid, "course.yaml");
+  std::vector<Solid> solids = WorldSolids(s);
+  // one box, two treads, a table top and four legs
+  ASSERT_EQ(solids.size(), 8u);
+  EXPECT_EQ(solids[0].name, "block");
+  EXPECT_TRUE(solids[0].box.X_FB.translation().isApprox(Eigen::Vector3d(1.0, 0.5, 0.04)));
+  EXPECT_TRUE(solids[0].box.half_size.isApprox(Eigen::Vector3d(0.1, 0.1, 0.04)));
+  // treads from the floor to their heights, consecutive along +x from the start
+  EXPECT_EQ(solids[2].name, "steps/tread2");
+  EXPECT_TRUE(solids[1].box.X_FB.translation().isApprox(Eigen::Vector3d(1.625, 0, 0.015)));
+  EXPECT_TRUE(solids[2].box.X_FB.translation().isApprox(Eigen::Vector3d(1.9, 0, 0.03)));
+  // table top: upper surface at the height, underside at height - top
+  EXPECT_EQ(solids[3].name, "desk/top");
+  EXPECT_NEAR(solids[3].box.X_FB.translation().z() + solids[3].box.half_size.z(), 0.56, 1e-12);
+  EXPECT_NEAR(solids[3].box.X_FB.translation().z() - solids[3].box.half_size.z(), 0.53, 1e-12);
+  // legs inside the corners, from the floor to the underside
+  EXPECT_NEAR(solids[4].box.X_FB.translation().x(), 2.5 - 0.3 + 0.02, 1e-12);
+  EXPECT_NEAR(solids[4].box.X_FB.translation().y(), -0.5 + 0.02, 1e-12);
+  EXPECT_NEAR(2 * solids[4].box.half_size.z(), 0.53, 1e-12);
+}
+
+struct BadInput {
+  std::string from, to;  // the change to kValid
+  std::string expected;  // a part of the message: file:line: key: what
+};
+
+void PrintTo(const BadInput& bad, std::ostream* out) { *out << "'" << bad.expected << "'"; }
+
+class ScenarioErrors : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(ScenarioErrors, NameFileLineAndKey) {
+  const BadInput& bad = GetParam();
+  std::string message = ErrorOf(Replace(kValid, bad.from, bad.to));
+  EXPECT_NE(message.find(bad.expected), std::string::npos)
+      << "message: '" << message << "'\nexpected to contain: '" << bad.expected << "'";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    AllKinds, ScenarioErrors,
+    ::testing::Values(
+        // unknown keys, at any depth
+        BadInput{"name: unit", "name: unit\ncolour: red", "course.yaml:2: colour: unknown key"},
+        BadInput{"floor: [6.0, 2.0]", "floor: [6.0, 2.0]\n  gravity: 9.8",
+                 "course.yaml:8: world.gravity: unknown key"},
+        BadInput{"height: 0.56}", "height: 0.56, colour: red}",
+                 "course.yaml:12: world.objects[2].table.colour: unknown key"},
+        // wrong types
+        BadInput{"position: [3.0, 0.0]", "position: [3.0, east]",
+                 "course.yaml:5: goal.position[1]: expected a number, got 'east'"},
+        BadInput{"start: [0.0, 0.0, 90.0]", "start: [0.0, 0.0]",
+                 "course.yaml:3: robot.start: expected a list of 3 numbers"},
+        BadInput{"name: unit", "name: Unit Course", "course.yaml:1: name: expected lower-case"},
+        // missing required keys
+        BadInput{"goal:\n  position: [3.0, 0.0]\n", "",
+                 "course.yaml:1: goal: missing required key"},
+        BadInput{"{name: block, center: [1.0, 0.5], ", "{center: [1.0, 0.5], ",
+                 "course.yaml:10: world.objects[0].box.name: missing required key"},
+        // impossible values
+        BadInput{"size: [0.2, 0.2, 0.08]", "size: [0.2, -0.2, 0.08]",
+                 "course.yaml:10: world.objects[0].box.size: expected 3 positive sizes"},
+        BadInput{"size: [0.2, 0.2, 0.08]", "size: [0.2, 0.0, 0.08]",
+                 "course.yaml:10: world.objects[0].box.size: expected 3 positive sizes"},
+        BadInput{"[0.3, 0.06]", "[0.3, -0.06]",
+                 "course.yaml:11: world.objects[1].stairs.steps[1]: expected a positive depth"},
+        BadInput{"floor: [6.0, 2.0]", "floor: [6.0, 0.0]",
+                 "course.yaml:7: world.floor: expected 2 positive sizes"},
+        // goal and start off the floor
+        BadInput{"position: [3.0, 0.0]", "position: [9.0, 0.0]",
+                 "course.yaml:5: goal.position: the goal is off the floor"},
+        BadInput{"start: [0.0, 0.0, 90.0]", "start: [-2.0, 0.0, 90.0]",
+                 "course.yaml:3: robot.start: the start is off the floor"},
+        // the start overlapping an object
+        BadInput{"center: [1.0, 0.5]", "center: [0.05, 0.05]",
+                 "course.yaml:10: world.objects[0]: object 'block' overlaps the robot's start"},
+        // a duplicate object name
+        BadInput{"name: steps", "name: block",
+                 "course.yaml:11: world.objects[1]: duplicate object name 'block'"},
+        // an object entry with two kinds
+        BadInput{"- box: {name: block, center: [1.0, 0.5], size: [0.2, 0.2, 0.08]}",
+                 "- box: {name: block, center: [1.0, 0.5], size: [0.2, 0.2, 0.08]}\n      table: {}",
+                 "course.yaml:10: world.objects[0]: expected exactly one of the keys box, stairs, table"},
+        // bad enumerations
+        BadInput{"name: unit", "name: unit\nsensor: {depth: lidar}",
+                 "course.yaml:2: sensor.depth: expected stereo or ideal, got 'lidar'"},
+        BadInput{"name: unit", "name: unit\nexpect: {actions_used: [walk, fly]}",
+                 "course.yaml:2: expect.actions_used[1]: unknown action 'fly'"},
+        BadInput{"name: unit", "name: unit\nlimits: {max_cycles: 0}",
+                 "course.yaml:2: limits.max_cycles: expected an integer from 1"},
+        // not YAML at all
+        BadInput{"name: unit", "name: [unit", "course.yaml:"}));
+
+TEST(Scenario, UnreadableFileNamesThePath) {
+  try {
+    LoadScenario("/nonexistent/course.yaml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/course.yaml: cannot read"), std::string::npos);
+  }
+}
+
+TEST(Scenario, ShippedScenariosAreValid) {
+  for (const char* path : {"scenarios/stairs_and_table.yaml"}) {
+    EXPECT_NO_THROW(LoadScenario(path)) << path;
+  }
+}
+
+}  // namespace
+}  // namespace fognav::scenarios
