@@ -1,0 +1,491 @@
+#include "navigation/internal/lattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <utility>
+
+namespace fognav::navigation::internal {
+namespace {
+
+using perception::CellType;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kEps = 1e-9;
+
+constexpr CellStep kSteps[kNumHeadings] = {{1, 0},  {2, 1},   {1, 1},   {1, 2},
+                                           {0, 1},  {-1, 2},  {-1, 1},  {-2, 1},
+                                           {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2},
+                                           {0, -1}, {1, -2},  {1, -1},  {2, -1}};
+
+[[noreturn]] void Die(const char* what) {
+  std::fprintf(stderr, "fognav::navigation: %s\n", what);
+  std::abort();
+}
+
+double WrapAngle(double a) {
+  while (a > M_PI) a -= 2 * M_PI;
+  while (a <= -M_PI) a += 2 * M_PI;
+  return a;
+}
+
+// felzenszwalb & huttenlocher's lower envelope of parabolas, one line of the transform
+void Transform1d(const double* f, int n, int stride, double* d, std::vector<int>* v_buf,
+                 std::vector<double>* z_buf) {
+  std::vector<int>& v = *v_buf;
+  std::vector<double>& z = *z_buf;
+  int k = 0;
+  v[0] = 0;
+  z[0] = -kInf;
+  z[1] = kInf;
+  auto fq = [&](int q) { return f[size_t(q) * size_t(stride)]; };
+  for (int q = 1; q < n; ++q) {
+    // intersection of the parabola from q with the rightmost one of the envelope
+    auto meet = [&](int r) {
+      return ((fq(q) + double(q) * q) - (fq(r) + double(r) * r)) / (2.0 * q - 2.0 * r);
+    };
+    double s = meet(v[size_t(k)]);
+    while (s <= z[size_t(k)]) {
+      --k;
+      s = meet(v[size_t(k)]);
+    }
+    ++k;
+    v[size_t(k)] = q;
+    z[size_t(k)] = s;
+    z[size_t(k) + 1] = kInf;
+  }
+  k = 0;
+  for (int q = 0; q < n; ++q) {
+    while (z[size_t(k) + 1] < q) ++k;
+    const int r = v[size_t(k)];
+    d[size_t(q) * size_t(stride)] = double(q - r) * (q - r) + fq(r);
+  }
+}
+
+}  // namespace
+
+CellStep HeadingStep(int heading) { return kSteps[heading]; }
+
+double HeadingYaw(int heading) {
+  return std::atan2(double(kSteps[heading].dy), double(kSteps[heading].dx));
+}
+
+int NearestHeading(double yaw) {
+  int best = 0;
+  double best_diff = kInf;
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const double diff = std::abs(WrapAngle(yaw - HeadingYaw(k)));
+    if (diff < best_diff) {
+      best_diff = diff;
+      best = k;
+    }
+  }
+  return best;
+}
+
+void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, int size_y,
+                              std::vector<double>* out) {
+  const size_t n = size_t(size_x) * size_t(size_y);
+  if (feature.size() != n) Die("SquaredDistanceTransform: feature size does not match grid");
+  std::vector<double> f(n);
+  for (size_t i = 0; i < n; ++i) f[i] = feature[i] ? 0.0 : kFarSquared;
+  out->assign(n, kFarSquared);
+  const int longest = std::max(size_x, size_y);
+  std::vector<int> v(size_t(longest) + 1);
+  std::vector<double> z(size_t(longest) + 2);
+  std::vector<double> tmp(n);
+  // columns (along y), then rows (along x)
+  for (int x = 0; x < size_x; ++x) Transform1d(&f[size_t(x)], size_y, size_x, &tmp[size_t(x)], &v, &z);
+  for (int y = 0; y < size_y; ++y) {
+    Transform1d(&tmp[size_t(y) * size_t(size_x)], size_x, 1, &(*out)[size_t(y) * size_t(size_x)],
+                &v, &z);
+  }
+  for (double& d : *out) {
+    if (d >= 0.5 * kFarSquared) d = kFarSquared;
+  }
+}
+
+Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
+                 const PlannerParams& p)
+    : fog_(fog), p_(p), goal_G_(goal_G) {
+  const perception::GridWindow& w = fog.window;
+  if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
+  num_cells_ = w.NumCells();
+  if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
+    Die("Plan: FOG type/height arrays do not match its window");
+  }
+  min_factor_ = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor, p.stairs_factor,
+                          p.crawl_factor, p.crawl_factor * p.backward_factor});
+  if (!(min_factor_ > 0)) Die("Plan: move cost factors must be positive");
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
+  goal_in_window_ = w.Contains(gx, gy);
+
+  // lattice geometry
+  for (int k = 0; k < kNumHeadings; ++k) {
+    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * w.resolution;
+    turn_angle_[k] = std::abs(WrapAngle(HeadingYaw((k + 1) % kNumHeadings) - HeadingYaw(k)));
+  }
+
+  // footprints: cells whose centres lie in the grown rectangle
+  const double half_along[2] = {0.5 * p.depth + p.margin, 0.5 * p.crawl_length + p.margin};
+  const double half_across[2] = {0.5 * p.shoulder_width + p.margin,
+                                 0.5 * p.crawl_width + p.margin};
+  for (int q = 0; q < 2; ++q) {
+    const double a = half_along[q], b = half_across[q];
+    if (!(a > 0 && b > 0)) Die("Plan: footprint sizes must be positive");
+    inner_radius_cells_[q] = std::min(a, b) / w.resolution;
+    outer_radius_cells_[q] = std::hypot(a, b) / w.resolution;
+    const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
+    outer_reach_cells_[q] = 0;
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
+      std::vector<CellStep>& cells = footprint_[q][k];
+      cells.clear();
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const double u = (dx * c + dy * s) * w.resolution;
+          const double v = (-dx * s + dy * c) * w.resolution;
+          if (std::abs(u) <= a + kEps && std::abs(v) <= b + kEps) {
+            cells.push_back({dx, dy});
+            outer_reach_cells_[q] = std::max({outer_reach_cells_[q], std::abs(dx), std::abs(dy)});
+          }
+        }
+      }
+      // outermost cells first: they meet obstacles first
+      std::sort(cells.begin(), cells.end(), [](const CellStep& l, const CellStep& r) {
+        return l.dx * l.dx + l.dy * l.dy > r.dx * r.dx + r.dy * r.dy;
+      });
+    }
+  }
+
+  ComputePermissions();
+  ComputeCellCosts();
+  valid_.assign(size_t(NumStates()), 0);
+  ComputeHeuristic();
+}
+
+void Lattice::ComputePermissions() {
+  const perception::GridWindow& w = fog_.window;
+  const size_t n = size_t(num_cells_);
+  // crawl zone: tunnel cells and floor cells near them
+  std::vector<uint8_t> tunnel(n);
+  for (size_t i = 0; i < n; ++i) tunnel[i] = fog_.type[i] == CellType::kTunnel;
+  std::vector<double> tunnel_d2;
+  SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2);
+  const double zone_cells = p_.crawl_zone_radius / w.resolution;
+  ok_[0].assign(n, 0);
+  ok_[1].assign(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    const CellType t = fog_.type[i];
+    ok_[0][i] = t == CellType::kFloor || t == CellType::kStairs || t == CellType::kUnknown;
+    ok_[1][i] = t == CellType::kTunnel ||
+                (t == CellType::kFloor && tunnel_d2[i] <= zone_cells * zone_cells + kEps);
+  }
+  for (int q = 0; q < 2; ++q) {
+    std::vector<uint8_t> blocked(n);
+    for (size_t i = 0; i < n; ++i) blocked[i] = !ok_[q][i];
+    SquaredDistanceTransform(blocked, w.size_x, w.size_y, &blocked_d2_[q]);
+  }
+}
+
+void Lattice::ComputeCellCosts() {
+  const perception::GridWindow& w = fog_.window;
+  cell_cost_.assign(size_t(num_cells_), 0.0);
+  // falloff disc, in cells
+  const double radius_cells = p_.clearance_radius / w.resolution;
+  struct DiscCell {
+    int dx, dy;
+    double falloff;
+  };
+  std::vector<DiscCell> disc;
+  const int r = int(std::ceil(radius_cells));
+  if (p_.clearance_weight > 0 && radius_cells > 0) {
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dx = -r; dx <= r; ++dx) {
+        const double d = std::hypot(double(dx), double(dy));
+        if (d < radius_cells) disc.push_back({dx, dy, 1.0 - d / radius_cells});
+      }
+    }
+  }
+  auto blocking = [](CellType t) { return t == CellType::kObstacle || t == CellType::kBorder; };
+  auto has_floor = [](CellType t) {
+    return t == CellType::kFloor || t == CellType::kStairs || t == CellType::kTunnel ||
+           t == CellType::kBorder;
+  };
+  for (int iy = 0; iy < w.size_y && !disc.empty(); ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      const CellType t = fog_.type[i];
+      if (!blocking(t)) continue;
+      // only cells on the rim of a blocked blob: the inner ones are farther from any free cell
+      bool rim = false;
+      double ref_floor = -kInf;
+      for (int ny = iy - 1; ny <= iy + 1; ++ny) {
+        for (int nx = ix - 1; nx <= ix + 1; ++nx) {
+          if (!w.Contains(nx, ny) || (nx == ix && ny == iy)) continue;
+          const size_t j = size_t(w.Index(nx, ny));
+          if (!blocking(fog_.type[j])) rim = true;
+          if (has_floor(fog_.type[j]) && std::isfinite(fog_.height[j])) {
+            ref_floor = std::max(ref_floor, double(fog_.height[j]));
+          }
+        }
+      }
+      if (!rim) continue;
+      double rel = p_.clearance_height_cap;
+      if (t == CellType::kBorder) {
+        rel = p_.border_clearance_height;
+      } else if (std::isfinite(fog_.height[i]) && std::isfinite(ref_floor)) {
+        rel = double(fog_.height[i]) - ref_floor;
+      }
+      rel = std::clamp(rel, 0.0, p_.clearance_height_cap);
+      const double weight = p_.clearance_weight * rel / p_.clearance_height_ref;
+      if (!(weight > 0)) continue;
+      for (const DiscCell& c : disc) {
+        const int nx = ix + c.dx, ny = iy + c.dy;
+        if (!w.Contains(nx, ny)) continue;
+        double& cost = cell_cost_[size_t(w.Index(nx, ny))];
+        cost = std::max(cost, weight * c.falloff);
+      }
+    }
+  }
+  for (size_t i = 0; i < size_t(num_cells_); ++i) {
+    if (fog_.type[i] == CellType::kUnknown) cell_cost_[i] += p_.unknown_penalty;
+  }
+}
+
+double Lattice::HeightStep(int from_cell, int to_cell) const {
+  const float a = fog_.height[size_t(from_cell)], b = fog_.height[size_t(to_cell)];
+  if (!std::isfinite(a) || !std::isfinite(b)) return 0.0;
+  return double(b) - double(a);
+}
+
+bool Lattice::InGoalRegion(int cell) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
+  if (ix == gx && iy == gy) return true;
+  return (w.CellCenter(ix, iy) - goal_G_).norm() <= p_.goal_tolerance;
+}
+
+void Lattice::ComputeHeuristic() {
+  // exact cost-to-go on a relaxed 2D graph: same cell steps and per-metre costs at the lowest
+  // move factor, no footprint orientation, turns or posture changes free, and a cell open when
+  // it is not certainly blocked for both postures; a lower bound of every 3D path, hence
+  // admissible and consistent
+  const perception::GridWindow& w = fog_.window;
+  const size_t n = size_t(num_cells_);
+  std::vector<uint8_t> open(n);
+  for (size_t i = 0; i < n; ++i) {
+    bool any = false;
+    for (int q = 0; q < 2; ++q) {
+      const double in = inner_radius_cells_[q] - kEps;
+      if (!(in > 0 && blocked_d2_[q][i] <= in * in) && ok_[q][i]) any = true;
+    }
+    open[i] = any;
+  }
+  heuristic_.assign(n, kInf);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const int i = w.Index(ix, iy);
+      if (!open[size_t(i)]) continue;
+      double h = kInf;
+      if (goal_in_window_) {
+        if (InGoalRegion(i)) h = 0;
+      } else {
+        h = (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor;
+      }
+      if (h < kInf) {
+        heuristic_[size_t(i)] = h;
+        queue.push({h, i});
+      }
+    }
+  }
+  while (!queue.empty()) {
+    const auto [h, i] = queue.top();
+    queue.pop();
+    if (h > heuristic_[size_t(i)]) continue;
+    const int ix = i % w.size_x, iy = i / w.size_x;
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const int nx = ix + kSteps[k].dx, ny = iy + kSteps[k].dy;
+      if (!w.Contains(nx, ny)) continue;
+      const int j = w.Index(nx, ny);
+      if (!open[size_t(j)]) continue;
+      if (std::abs(HeightStep(i, j)) > p_.h_stairs) continue;
+      const double cost =
+          step_length_[k] * (min_factor_ + 0.5 * (cell_cost_[size_t(i)] + cell_cost_[size_t(j)]));
+      if (h + cost < heuristic_[size_t(j)]) {
+        heuristic_[size_t(j)] = h + cost;
+        queue.push({h + cost, j});
+      }
+    }
+  }
+}
+
+perception::Pose2 Lattice::PoseOf(int s) const {
+  const int cell = CellOfState(s);
+  const Eigen::Vector2d c =
+      fog_.window.CellCenter(cell % fog_.window.size_x, cell / fog_.window.size_x);
+  return {c.x(), c.y(), HeadingYaw(HeadingOfState(s))};
+}
+
+bool Lattice::FootprintFits(int cell, int heading, int q) const {
+  const perception::GridWindow& w = fog_.window;
+  const double d2 = blocked_d2_[q][size_t(cell)];
+  const double in = inner_radius_cells_[q] - kEps;
+  if (in > 0 && d2 <= in * in) return false;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const int reach = outer_reach_cells_[q];
+  const bool inside =
+      ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;
+  const double out = outer_radius_cells_[q] + kEps;
+  if (d2 > out * out && (q == 0 || inside)) return true;
+  const std::vector<uint8_t>& ok = ok_[q];
+  for (const CellStep& o : footprint_[q][heading]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) {
+      // beyond the window is unknown: standing is allowed there, crawling is not
+      if (q == 1) return false;
+      continue;
+    }
+    if (!ok[size_t(w.Index(nx, ny))]) return false;
+  }
+  return true;
+}
+
+bool Lattice::Valid(int s) {
+  uint8_t& v = valid_[size_t(s)];
+  if (v == 0) v = FootprintFits(CellOfState(s), HeadingOfState(s), int(PostureOfState(s))) ? 1 : 2;
+  return v == 1;
+}
+
+int Lattice::Successors(int s, Successor* out) {
+  const perception::GridWindow& w = fog_.window;
+  const int cell = CellOfState(s);
+  const int k = HeadingOfState(s);
+  const Posture posture = PostureOfState(s);
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  int n = 0;
+
+  // a translation by heading step `dir` keeping heading k and the posture
+  auto translate = [&](int dir, int sign, double factor, Move move, bool allow_steps) {
+    const int nx = ix + sign * kSteps[dir].dx, ny = iy + sign * kSteps[dir].dy;
+    if (!w.Contains(nx, ny)) return;
+    const int to = w.Index(nx, ny);
+    const int t = StateIndex(nx, ny, k, posture);
+    const double dh = HeightStep(cell, to);
+    if (std::abs(dh) > p_.h_stairs) return;
+    const bool step = std::abs(dh) > p_.h_floor;
+    if (step && !allow_steps) return;
+    if (!Valid(t)) return;
+    const bool on_stairs = step || fog_.type[size_t(cell)] == CellType::kStairs ||
+                           fog_.type[size_t(to)] == CellType::kStairs;
+    if (on_stairs) factor = std::max(factor, p_.stairs_factor);
+    if (step) move = dh > 0 ? Move::kStairsUp : Move::kStairsDown;
+    const double length = step_length_[dir];
+    const double cost =
+        length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
+    out[n++] = {t, cost, length, move};
+  };
+  // a turn in place to heading k2 at angle `angle`
+  auto turn = [&](int k2, double angle, double factor) {
+    const int t = StateIndex(ix, iy, k2, posture);
+    if (!Valid(t)) return;
+    out[n++] = {t, angle * p_.turn_cost_per_rad * factor, 0.0, Move::kTurn};
+  };
+  const int left = (k + 1) % kNumHeadings, right = (k + kNumHeadings - 1) % kNumHeadings;
+  const int across = (k + 4) % kNumHeadings;
+
+  if (posture == Posture::kUpright) {
+    translate(k, +1, p_.walk_factor, Move::kWalk, true);  // steps up and down only facing them
+    translate(k, -1, p_.backward_factor, Move::kWalk, false);
+    translate(across, +1, p_.sidestep_factor, Move::kSidestep, false);
+    translate(across, -1, p_.sidestep_factor, Move::kSidestep, false);
+    turn(left, turn_angle_[k], 1.0);
+    turn(right, turn_angle_[right], 1.0);
+    const int down = StateIndex(ix, iy, k, Posture::kCrawling);
+    if (Valid(down)) out[n++] = {down, p_.posture_change_cost, 0.0, Move::kCrawl};
+  } else {
+    translate(k, +1, p_.crawl_factor, Move::kCrawl, false);
+    translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl, false);
+    turn(left, turn_angle_[k], p_.crawl_factor);
+    turn(right, turn_angle_[right], p_.crawl_factor);
+    const int up = StateIndex(ix, iy, k, Posture::kUpright);
+    if (Valid(up)) out[n++] = {up, p_.posture_change_cost, 0.0, Move::kCrawl};
+  }
+  return n;
+}
+
+double Lattice::TerminalCost(int s) const {
+  const int cell = CellOfState(s);
+  if (goal_in_window_) return InGoalRegion(cell) ? 0.0 : kInf;
+  const perception::GridWindow& w = fog_.window;
+  return (w.CellCenter(cell % w.size_x, cell / w.size_x) - goal_G_).norm() * p_.exit_factor;
+}
+
+bool Lattice::GoalRegionHasValidState() {
+  if (!goal_in_window_) return false;
+  const perception::GridWindow& w = fog_.window;
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
+  const int r = int(std::ceil(p_.goal_tolerance / w.resolution)) + 1;
+  for (int iy = gy - r; iy <= gy + r; ++iy) {
+    for (int ix = gx - r; ix <= gx + r; ++ix) {
+      if (!w.Contains(ix, iy) || !InGoalRegion(w.Index(ix, iy))) continue;
+      for (int q = 0; q < 2; ++q) {
+        for (int k = 0; k < kNumHeadings; ++k) {
+          if (Valid(StateIndex(ix, iy, k, Posture(q)))) return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture posture) {
+  const perception::GridWindow& w = fog_.window;
+  std::vector<Seed> seeds;
+  int sx = 0, sy = 0;
+  w.CellOf(start_G.x, start_G.y, &sx, &sy);
+  if (!w.Contains(sx, sy)) return seeds;
+  const int exact = StateIndex(sx, sy, NearestHeading(start_G.yaw), posture);
+  if (Valid(exact)) {
+    seeds.push_back({exact, 0.0, 0.0, Move::kNone});
+    return seeds;
+  }
+  // shuffle free: any allowed state close by, at the cost of side-stepping, turning and
+  // changing posture there
+  const Eigen::Vector2d start(start_G.x, start_G.y);
+  const int r = int(std::ceil(p_.start_escape_radius / w.resolution)) + 1;
+  for (int iy = sy - r; iy <= sy + r; ++iy) {
+    for (int ix = sx - r; ix <= sx + r; ++ix) {
+      if (!w.Contains(ix, iy)) continue;
+      const double d = (w.CellCenter(ix, iy) - start).norm();
+      if (d > p_.start_escape_radius && !(ix == sx && iy == sy)) continue;
+      for (int q = 0; q < 2; ++q) {
+        for (int k = 0; k < kNumHeadings; ++k) {
+          const int s = StateIndex(ix, iy, k, Posture(q));
+          if (!Valid(s)) continue;
+          const double angle = std::abs(WrapAngle(HeadingYaw(k) - start_G.yaw));
+          const bool changes = Posture(q) != posture;
+          const double cost = d * p_.sidestep_factor +
+                              angle * p_.turn_cost_per_rad *
+                                  (Posture(q) == Posture::kCrawling ? p_.crawl_factor : 1.0) +
+                              (changes ? p_.posture_change_cost : 0.0);
+          const Move move = changes ? Move::kCrawl : d > kEps ? Move::kSidestep : Move::kTurn;
+          seeds.push_back({s, cost, d, move});
+        }
+      }
+    }
+  }
+  return seeds;
+}
+
+}  // namespace fognav::navigation::internal

@@ -1,0 +1,121 @@
+// The search graph of the planner: states are FOG cells x 16 lattice headings x 2 postures,
+// edges are the moves with their costs. Plan() runs A* on it; tests run a plain Dijkstra on the
+// same graph to check that A* is optimal.
+#ifndef FOGNAV_NAVIGATION_INTERNAL_LATTICE_H_
+#define FOGNAV_NAVIGATION_INTERNAL_LATTICE_H_
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "navigation/planner.h"
+#include "perception/mapping.h"
+#include "perception/types.h"
+
+namespace fognav::navigation::internal {
+
+// Cell step of lattice heading k (0..15, counter-clockwise from +x).
+struct CellStep {
+  int dx = 0, dy = 0;
+};
+CellStep HeadingStep(int heading);
+// Yaw of lattice heading k in radians, in (-pi, pi].
+double HeadingYaw(int heading);
+// Lattice heading nearest to a yaw.
+int NearestHeading(double yaw);
+
+// One edge of the graph.
+struct Successor {
+  int state = 0;
+  double cost = 0;    // metres-equivalent
+  double length = 0;  // distance moved by the robot's origin, metres
+  Move move = Move::kNone;
+};
+inline constexpr int kMaxSuccessors = 8;
+
+// A state the search starts from, with the cost of shuffling there from the start pose.
+struct Seed {
+  int state = 0;
+  double cost = 0;
+  double length = 0;
+  Move move = Move::kNone;  // kNone when it is the start pose itself (snapped to the lattice)
+};
+
+// Squared Euclidean distance transform on a size_x x size_y grid: out[i] is the squared distance
+// in cells from cell i's centre to the nearest cell whose `feature` is set, or kFarSquared when
+// there is none.
+inline constexpr double kFarSquared = 1e20;
+void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, int size_y,
+                              std::vector<double>* out);
+
+class Lattice {
+ public:
+  // Prepares per-cell permissions, costs, footprints and the heuristic for one query. Aborts if
+  // the FOG's arrays do not match its window.
+  Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p);
+
+  int NumStates() const { return num_cells_ * 2 * kNumHeadings; }
+  int StateIndex(int ix, int iy, int heading, Posture posture) const {
+    return ((fog_.window.Index(ix, iy) * 2) + int(posture)) * kNumHeadings + heading;
+  }
+  int CellOfState(int s) const { return s / (2 * kNumHeadings); }
+  int HeadingOfState(int s) const { return s % kNumHeadings; }
+  Posture PostureOfState(int s) const { return Posture((s / kNumHeadings) % 2); }
+  perception::Pose2 PoseOf(int s) const;
+
+  // Whether the footprint of state s lies on cells that permit its posture (cached).
+  bool Valid(int s);
+  // Writes the successors of a valid state into out (at most kMaxSuccessors); returns how many.
+  int Successors(int s, Successor* out);
+  // Cost of ending the path at state s: 0 in the goal region, the exit cost when the goal is
+  // outside the window, +infinity otherwise.
+  double TerminalCost(int s) const;
+  // Consistent lower bound on the cost from state s to the end of a path (+infinity when the
+  // relaxed problem already shows that none exists).
+  double Heuristic(int s) const { return heuristic_[size_t(CellOfState(s))]; }
+
+  bool GoalInWindow() const { return goal_in_window_; }
+  // Whether some valid state lies in the goal region (only meaningful with the goal in window).
+  bool GoalRegionHasValidState();
+  // States to start from: the start pose snapped to the lattice if valid, otherwise the valid
+  // states within start_escape_radius. Empty if the start is outside the window or blocked.
+  std::vector<Seed> StartSeeds(const perception::Pose2& start_G, Posture posture);
+
+  // Per-cell extra cost per metre (clearance + unknown), for tests.
+  double CellCost(int ix, int iy) const { return cell_cost_[size_t(fog_.window.Index(ix, iy))]; }
+  bool CrawlAllowedAt(int ix, int iy) const {
+    return ok_[1][size_t(fog_.window.Index(ix, iy))] != 0;
+  }
+
+ private:
+  bool FootprintFits(int cell, int heading, int posture) const;
+  bool InGoalRegion(int cell) const;
+  void ComputePermissions();
+  void ComputeCellCosts();
+  void ComputeHeuristic();
+  double HeightStep(int from_cell, int to_cell) const;
+
+  const perception::Fog& fog_;
+  PlannerParams p_;
+  Eigen::Vector2d goal_G_;
+  bool goal_in_window_ = false;
+  int num_cells_ = 0;
+  double min_factor_ = 1.0;
+
+  std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
+  std::vector<double> blocked_d2_[2];   // per cell: squared distance (cells) to a blocked cell
+  std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
+  double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
+  double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
+  int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
+  std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
+  std::vector<double> heuristic_;          // per cell
+  std::vector<uint8_t> valid_;             // per state: 0 unknown, 1 valid, 2 invalid
+  double step_length_[kNumHeadings] = {};  // metres
+  double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
+};
+
+}  // namespace fognav::navigation::internal
+
+#endif  // FOGNAV_NAVIGATION_INTERNAL_LATTICE_H_

@@ -1,0 +1,173 @@
+#include "navigation/planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "navigation/internal/lattice.h"
+
+namespace fognav::navigation {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+PlanResult NoPath(NoPathReason reason, int expanded = 0) {
+  PlanResult r;
+  r.status = PlanStatus::kNoPath;
+  r.reason = reason;
+  r.expanded = expanded;
+  return r;
+}
+
+// open-list entry; the heap keeps the smallest f on top, ties broken toward larger g (deeper)
+struct OpenEntry {
+  double f;
+  double g;
+  int state;
+};
+struct OpenAfter {
+  bool operator()(const OpenEntry& a, const OpenEntry& b) const {
+    return a.f > b.f || (a.f == b.f && a.g < b.g);
+  }
+};
+
+}  // namespace
+
+const char* MoveName(Move move) {
+  switch (move) {
+    case Move::kNone: return "none";
+    case Move::kWalk: return "walk";
+    case Move::kSidestep: return "sidestep";
+    case Move::kTurn: return "turn";
+    case Move::kStairsUp: return "stairs_up";
+    case Move::kStairsDown: return "stairs_down";
+    case Move::kCrawl: return "crawl";
+  }
+  return "invalid";
+}
+
+const char* PostureName(Posture posture) {
+  return posture == Posture::kUpright ? "upright" : "crawling";
+}
+
+const char* PlanStatusName(PlanStatus status) {
+  return status == PlanStatus::kOk ? "ok" : "no_path";
+}
+
+const char* NoPathReasonName(NoPathReason reason) {
+  switch (reason) {
+    case NoPathReason::kNone: return "none";
+    case NoPathReason::kStartBlocked: return "start_blocked";
+    case NoPathReason::kGoalBlocked: return "goal_blocked";
+    case NoPathReason::kGoalEnclosed: return "goal_enclosed";
+  }
+  return "invalid";
+}
+
+PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
+                const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
+  internal::Lattice lattice(fog, goal_G, p);
+
+  // where the search may start and end
+  const std::vector<internal::Seed> seeds = lattice.StartSeeds(start_G, start_posture);
+  if (seeds.empty()) return NoPath(NoPathReason::kStartBlocked);
+  if (lattice.GoalInWindow() && !lattice.GoalRegionHasValidState()) {
+    return NoPath(NoPathReason::kGoalBlocked);
+  }
+  const bool any_seed_connected = std::any_of(seeds.begin(), seeds.end(), [&](const auto& s) {
+    return lattice.Heuristic(s.state) < kInf;
+  });
+  if (!any_seed_connected) return NoPath(NoPathReason::kGoalEnclosed);
+
+  // search state, one entry per lattice state
+  const size_t n = size_t(lattice.NumStates());
+  std::vector<double> g(n, kInf);
+  std::vector<int> parent(n, -1);
+  std::vector<Move> move_in(n, Move::kNone);
+  std::vector<uint8_t> closed(n, 0);
+  std::vector<OpenEntry> open;
+  open.reserve(1 << 14);
+  std::vector<int> seed_of(n, -1);  // index into seeds, for states that are seeds
+
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    const internal::Seed& s = seeds[i];
+    if (s.cost < g[size_t(s.state)]) {
+      g[size_t(s.state)] = s.cost;
+      seed_of[size_t(s.state)] = int(i);
+      move_in[size_t(s.state)] = s.move;
+      const double h = lattice.Heuristic(s.state);
+      if (h < kInf) {
+        open.push_back({s.cost + h, s.cost, s.state});
+        std::push_heap(open.begin(), open.end(), OpenAfter());
+      }
+    }
+  }
+
+  // A*: with a consistent heuristic each state is expanded once, with its optimal g
+  double best_total = kInf;
+  int best_state = -1;
+  int expanded = 0;
+  internal::Successor succ[internal::kMaxSuccessors];
+  while (!open.empty()) {
+    std::pop_heap(open.begin(), open.end(), OpenAfter());
+    const OpenEntry top = open.back();
+    open.pop_back();
+    if (top.f >= best_total) break;
+    const size_t s = size_t(top.state);
+    if (closed[s] || top.g > g[s]) continue;
+    closed[s] = 1;
+    ++expanded;
+    const double end = g[s] + lattice.TerminalCost(top.state);
+    if (end < best_total) {
+      best_total = end;
+      best_state = top.state;
+    }
+    const int count = lattice.Successors(top.state, succ);
+    for (int i = 0; i < count; ++i) {
+      const size_t t = size_t(succ[i].state);
+      if (closed[t]) continue;
+      const double ng = g[s] + succ[i].cost;
+      if (ng >= g[t]) continue;
+      const double h = lattice.Heuristic(succ[i].state);
+      if (h == kInf) continue;
+      g[t] = ng;
+      parent[t] = top.state;
+      move_in[t] = succ[i].move;
+      seed_of[t] = -1;
+      open.push_back({ng + h, ng, succ[i].state});
+      std::push_heap(open.begin(), open.end(), OpenAfter());
+    }
+  }
+  if (best_state < 0) return NoPath(NoPathReason::kGoalEnclosed, expanded);
+
+  // walk back from the best end state
+  std::vector<int> chain;
+  for (int s = best_state; s >= 0; s = parent[size_t(s)]) chain.push_back(s);
+  std::reverse(chain.begin(), chain.end());
+
+  PlanResult r;
+  r.status = PlanStatus::kOk;
+  r.reason = NoPathReason::kNone;
+  r.reaches_goal = lattice.GoalInWindow();
+  r.cost = best_total;
+  r.expanded = expanded;
+  r.path.push_back({start_G, Move::kNone, start_posture});
+  const internal::Seed& seed = seeds[size_t(seed_of[size_t(chain.front())])];
+  r.length = seed.length;
+  if (seed.move != Move::kNone) {
+    r.path.push_back({lattice.PoseOf(chain.front()), seed.move,
+                      lattice.PostureOfState(chain.front())});
+  }
+  for (size_t i = 1; i < chain.size(); ++i) {
+    const int s = chain[i];
+    const perception::Pose2 pose = lattice.PoseOf(s);
+    const perception::Pose2 prev = lattice.PoseOf(chain[i - 1]);
+    r.length += std::hypot(pose.x - prev.x, pose.y - prev.y);
+    r.path.push_back({pose, move_in[size_t(s)], lattice.PostureOfState(s)});
+  }
+  return r;
+}
+
+}  // namespace fognav::navigation

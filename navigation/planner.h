@@ -1,0 +1,161 @@
+// The path navigator of the paper's Section 6: A* over the Floor and Obstacle Grid (FOG) that
+// decides how the humanoid moves through each kind of terrain (walk, side-step, stairs, crawl),
+// and a picture of the plan drawn over the map. Pure functions over value types; everything is
+// in the grid frame G (the odometry frame) in metres and radians.
+#ifndef FOGNAV_NAVIGATION_PLANNER_H_
+#define FOGNAV_NAVIGATION_PLANNER_H_
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "perception/mapping.h"
+#include "perception/types.h"
+
+namespace fognav::navigation {
+
+// How the robot carries its body: standing (walks, side-steps, climbs) or crawling (under
+// tunnels only).
+enum class Posture : uint8_t { kUpright = 0, kCrawling = 1 };
+
+// The move that brings the robot to a path pose. kNone labels only the first pose (the start).
+// A posture change in place is labelled kCrawl; the pose's posture says whether the robot got
+// down (kCrawling) or up (kUpright).
+enum class Move : uint8_t { kNone = 0, kWalk, kSidestep, kTurn, kStairsUp, kStairsDown, kCrawl };
+inline constexpr int kNumMoves = 7;
+
+// Lower-case name of a move, as in report.json: "none", "walk", "sidestep", "turn",
+// "stairs_up", "stairs_down", "crawl".
+const char* MoveName(Move move);
+// Lower-case name of a posture: "upright", "crawling".
+const char* PostureName(Posture posture);
+
+// Number of headings of the search lattice: the 16 directions of the cell steps (1,0), (2,1),
+// (1,1), (1,2), (0,1), ... so every move ends on a cell centre. They are 18.4 to 26.6 degrees
+// apart rather than exactly 22.5.
+inline constexpr int kNumHeadings = 16;
+
+// Parameters of the planner. Robot defaults are for a QRIO-sized (0.58 m) humanoid; terrain
+// defaults are the paper's Section 6. Footprints are rectangles centred on the robot's origin:
+// upright `depth` along the heading by `shoulder_width` across it, crawling `crawl_length` by
+// `crawl_width`, each grown by `margin` on every side. A FOG cell is under a footprint when its
+// centre lies inside the grown rectangle. With the defaults the upright footprint is
+// 0.15 m x 0.29 m, so on 4 cm cells it covers 3 cells along the heading and 7 across: a gap of
+// 0.22 m (5 or 4 free cells once mapped) is too narrow to walk through facing it (7 cells) but
+// wide enough to side-step through (3 cells); a gap of 2 free cells (0.08 m, narrower than the
+// 0.12 m depth) is passable by no move. The crawling footprint is 0.43 m x 0.29 m (11 x 7 cells).
+struct PlannerParams {
+  // robot body, metres
+  double shoulder_width = 0.26;  // upright extent across the heading
+  double depth = 0.12;           // upright extent along the heading (feet and torso)
+  double crawl_length = 0.40;    // crawling extent along the heading (hands to feet)
+  double crawl_width = 0.26;     // crawling extent across the heading
+  double margin = 0.015;         // safety margin added on every side of both footprints
+
+  // terrain limits (paper Section 6), metres
+  double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
+  double h_stairs = 0.05;   // largest step the robot climbs; larger changes are never crossed
+  // floor cells whose centre is within this distance of a tunnel cell's centre allow crawling
+  // (the paper's "enlarged area" around a tunnel), metres
+  double crawl_zone_radius = 0.5;
+
+  // costs: a translation costs its length times its factor plus the clearance and unknown costs
+  // below; factors are per metre and >= walk_factor keeps the heuristic admissible
+  double walk_factor = 1.0;         // forward walking
+  double backward_factor = 1.5;     // walking backwards
+  double sidestep_factor = 1.6;     // stepping along the shoulders' axis
+  double stairs_factor = 2.0;       // any translation starting or ending on a stairs cell
+  double crawl_factor = 3.0;        // crawling forward (backward: times backward_factor)
+  double turn_cost_per_rad = 0.15;  // turning in place, metres-equivalent per radian
+                                    // (times crawl_factor when crawling)
+  double posture_change_cost = 1.0;  // getting down or getting up, metres-equivalent
+  double unknown_penalty = 0.5;      // added per metre on unknown cells
+
+  // clearance cost, added per metre: clearance_weight * min(h, clearance_height_cap) /
+  // clearance_height_ref * max(0, 1 - d / clearance_radius) for the worst obstacle cell at
+  // centre distance d whose top is h above the neighbouring floor, so the robot keeps further
+  // from tall obstacles than from low ones when it has room
+  double clearance_weight = 1.0;
+  double clearance_radius = 0.6;         // metres
+  double clearance_height_ref = 0.2;     // metres
+  double clearance_height_cap = 0.3;     // metres; walls and unknown heights count as this
+  double border_clearance_height = 0.1;  // border (drop-off) cells count as obstacles this high
+
+  // goal and start
+  double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
+  // a goal outside the map window is approached by planning to the reachable state minimising
+  // path cost + exit_factor * its straight-line distance to the goal
+  double exit_factor = 3.0;
+  // if the start pose itself is not allowed, the search starts from the allowed poses whose
+  // cell centre is this close to the start (the robot shuffles free); metres
+  double start_escape_radius = 0.06;
+};
+
+// Whether a plan was found.
+enum class PlanStatus : uint8_t { kOk = 0, kNoPath };
+
+// Why there is no path (kNone when there is one).
+enum class NoPathReason : uint8_t {
+  kNone = 0,
+  kStartBlocked,  // the start is outside the window, or no pose near it is allowed
+  kGoalBlocked,   // the goal is in the window but no pose within the tolerance is allowed
+  kGoalEnclosed,  // poses at the goal exist but none is connected to the start
+};
+
+// Lower-case name of a plan status ("ok", "no_path") and of a reason ("none",
+// "start_blocked", "goal_blocked", "goal_enclosed").
+const char* PlanStatusName(PlanStatus status);
+const char* NoPathReasonName(NoPathReason reason);
+
+// One pose of a path: where the robot is after `move`, in the grid frame, and its posture.
+struct PathPose {
+  perception::Pose2 pose_G;
+  Move move = Move::kNone;
+  Posture posture = Posture::kUpright;
+};
+
+// The answer of Plan. When status is kOk, path[0] is the start pose (move kNone) and each
+// further pose is a lattice state (cell centre, lattice heading) labelled with the move that
+// reaches it.
+struct PlanResult {
+  PlanStatus status = PlanStatus::kNoPath;
+  NoPathReason reason = NoPathReason::kNone;
+  std::vector<PathPose> path;
+  // true when the path ends within the goal tolerance; false when the goal lies outside the
+  // map window and the path ends at the best reachable state toward it
+  bool reaches_goal = false;
+  double cost = 0;    // total cost of the path (metres-equivalent)
+  double length = 0;  // travelled distance of the robot's origin, metres
+  int expanded = 0;   // states the search expanded
+};
+
+// Plans from `start_G` (the robot in `start_posture`) to `goal_G` on the FOG. Never throws for
+// "no answer": an unreachable goal is a result with status kNoPath and its reason. Aborts if
+// the FOG's arrays do not match its window.
+PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
+                const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                Posture start_posture = Posture::kUpright);
+
+// Pixel of the centre of FOG cell (ix, iy) in a map picture with `px_per_cell` pixels per cell:
+// x to the right, y up (row 0 holds the cells of largest iy).
+Eigen::Vector2i CellPixel(const perception::GridWindow& window, int px_per_cell, int ix, int iy);
+
+// Draws the path onto a map picture of the window (size_x * px_per_cell wide, size_y *
+// px_per_cell high, layout as in CellPixel): a polyline coloured by move (walk blue, sidestep
+// magenta, turn cyan, stairs orange, crawl red), a heading tick at each pose, the start as a
+// green square; poses outside the window are clipped. Aborts if the picture size does not match.
+void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int px_per_cell,
+              perception::RgbImage* picture);
+
+// Marks the goal on a map picture (a yellow-ringed cross); clipped if it is outside the window.
+void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window,
+              int px_per_cell, perception::RgbImage* picture);
+
+// A plain FOG picture for when no richer one is at hand: floor grey by height, stairs brown,
+// border dark brown, tunnel pink, obstacle black, unknown dark blue-grey; size as in DrawPath.
+perception::RgbImage DrawFogPlain(const perception::Fog& fog, int px_per_cell);
+
+}  // namespace fognav::navigation
+
+#endif  // FOGNAV_NAVIGATION_PLANNER_H_

@@ -1,0 +1,226 @@
+#include "navigation/internal/lattice.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "navigation/internal/test_worlds.h"
+#include "navigation/planner.h"
+
+namespace fognav::navigation::internal {
+namespace {
+
+using perception::CellType;
+using perception::Fog;
+using perception::Pose2;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Plain Dijkstra over every state of the lattice from the start seeds: the cheapest
+// path cost plus end cost, +infinity if none.
+double BruteForceCost(const Fog& fog, const Pose2& start, const Eigen::Vector2d& goal,
+                      const PlannerParams& p, Posture posture) {
+  Lattice lattice(fog, goal, p);
+  std::vector<double> dist(size_t(lattice.NumStates()), kInf);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (const Seed& s : lattice.StartSeeds(start, posture)) {
+    if (s.cost < dist[size_t(s.state)]) {
+      dist[size_t(s.state)] = s.cost;
+      queue.push({s.cost, s.state});
+    }
+  }
+  double best = kInf;
+  Successor succ[kMaxSuccessors];
+  while (!queue.empty()) {
+    const auto [d, s] = queue.top();
+    queue.pop();
+    if (d > dist[size_t(s)]) continue;
+    best = std::min(best, d + lattice.TerminalCost(s));
+    const int n = lattice.Successors(s, succ);
+    for (int i = 0; i < n; ++i) {
+      const double nd = d + succ[i].cost;
+      if (nd < dist[size_t(succ[i].state)]) {
+        dist[size_t(succ[i].state)] = nd;
+        queue.push({nd, succ[i].state});
+      }
+    }
+  }
+  return best;
+}
+
+// A small map with a bit of everything: random obstacles of random heights, a tread, a table,
+// unknown patches.
+Fog ClutteredFog(uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Fog fog = FlatFog(36, 30, 0.04);  // 1.44 m x 1.2 m
+  FillBox(&fog, 0.60, 0.0, 0.76, 1.2, CellType::kFloor, 0.03f);
+  ClassifyFloorChanges(&fog, 0.015, 0.05);
+  FillBox(&fog, 1.00, 0.10, 1.30, 0.50, CellType::kTunnel, 0.0f);
+  for (int i = 0; i < 6; ++i) {
+    const double x = 0.2 + 1.1 * u(rng), y = 1.1 * u(rng);
+    const double sx = 0.04 + 0.12 * u(rng), sy = 0.04 + 0.12 * u(rng);
+    const float h = float(0.05 + 0.3 * u(rng));
+    FillBox(&fog, x, y, x + sx, y + sy, CellType::kObstacle, h);
+  }
+  for (int i = 0; i < 3; ++i) {
+    const double x = 1.3 * u(rng), y = 1.1 * u(rng);
+    FillBox(&fog, x, y, x + 0.12, y + 0.12, CellType::kUnknown, -INFINITY);
+  }
+  return fog;
+}
+
+TEST(Lattice, AStarCostEqualsBruteForceDijkstra) {
+  PlannerParams p;
+  p.clearance_radius = 0.3;
+  int found = 0, none = 0;
+  for (uint32_t seed = 1; seed <= 12; ++seed) {
+    const Fog fog = ClutteredFog(seed);
+    const Pose2 start{0.14, 0.58, 0.3};
+    for (const Eigen::Vector2d& goal : {Eigen::Vector2d(1.30, 0.62), Eigen::Vector2d(1.16, 0.30),
+                                       Eigen::Vector2d(3.0, 0.9)}) {
+      const PlanResult r = Plan(fog, start, goal, p);
+      const double expected = BruteForceCost(fog, start, goal, p, Posture::kUpright);
+      if (expected == kInf) {
+        EXPECT_EQ(r.status, PlanStatus::kNoPath) << "seed " << seed;
+        ++none;
+      } else {
+        ASSERT_EQ(r.status, PlanStatus::kOk) << "seed " << seed;
+        EXPECT_NEAR(r.cost, expected, 1e-9 * expected) << "seed " << seed << " goal "
+                                                        << goal.transpose();
+        ++found;
+      }
+    }
+  }
+  // the worlds are mostly passable, so the comparison means something
+  EXPECT_GT(found, 20) << found << " found, " << none << " without a path";
+}
+
+TEST(Lattice, AStarCostEqualsBruteForceDijkstraFromUnderATable) {
+  PlannerParams p;
+  Fog fog = FlatFog(36, 30, 0.04);
+  FillBox(&fog, 0.80, 0.20, 1.20, 0.80, CellType::kTunnel, 0.0f);
+  FillBox(&fog, 0.80, 0.20, 0.84, 0.24, CellType::kObstacle, 0.56f);
+  FillBox(&fog, 0.30, 0.70, 0.50, 1.00, CellType::kObstacle, 0.20f);
+  FillBox(&fog, 0.10, 0.10, 0.40, 0.30, CellType::kUnknown, -INFINITY);
+  const Pose2 start{1.00, 0.50, 2.8};
+  const Eigen::Vector2d goal(0.20, 0.20);
+  const PlanResult r = Plan(fog, start, goal, p, Posture::kCrawling);
+  const double expected = BruteForceCost(fog, start, goal, p, Posture::kCrawling);
+  ASSERT_LT(expected, kInf);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_NEAR(r.cost, expected, 1e-9 * expected);
+  EXPECT_EQ(r.path.back().posture, Posture::kUpright);  // it crawled out and got up
+}
+
+TEST(Lattice, HeuristicIsConsistent) {
+  const PlannerParams p;
+  for (uint32_t seed = 1; seed <= 4; ++seed) {
+    const Fog fog = ClutteredFog(seed);
+    for (const Eigen::Vector2d& goal : {Eigen::Vector2d(1.30, 0.62), Eigen::Vector2d(3.0, 0.9)}) {
+      Lattice lattice(fog, goal, p);
+      Successor succ[kMaxSuccessors];
+      int checked = 0;
+      for (int s = 0; s < lattice.NumStates(); ++s) {
+        if (!lattice.Valid(s)) continue;
+        const double h = lattice.Heuristic(s);
+        EXPECT_LE(h, lattice.TerminalCost(s) + 1e-12);
+        const int n = lattice.Successors(s, succ);
+        for (int i = 0; i < n; ++i) {
+          ASSERT_LE(h, succ[i].cost + lattice.Heuristic(succ[i].state) + 1e-12)
+              << "state " << s << " -> " << succ[i].state;
+          ++checked;
+        }
+      }
+      EXPECT_GT(checked, 1000);
+    }
+  }
+}
+
+TEST(Lattice, SuccessorsStayValidAndCostAtLeastTheirLength) {
+  const PlannerParams p;
+  const Fog fog = ClutteredFog(5);
+  Lattice lattice(fog, {1.3, 0.6}, p);
+  Successor succ[kMaxSuccessors];
+  for (int s = 0; s < lattice.NumStates(); ++s) {
+    if (!lattice.Valid(s)) continue;
+    const int n = lattice.Successors(s, succ);
+    ASSERT_LE(n, kMaxSuccessors);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_TRUE(lattice.Valid(succ[i].state));
+      EXPECT_GE(succ[i].cost, succ[i].length * p.walk_factor - 1e-12);
+      EXPECT_GT(succ[i].cost, 0.0);
+    }
+  }
+}
+
+TEST(Lattice, DistanceTransformMatchesBruteForce) {
+  std::mt19937 rng(7);
+  const int nx = 23, ny = 17;
+  std::vector<uint8_t> feature(size_t(nx * ny));
+  for (auto& f : feature) f = (rng() % 13) == 0;
+  std::vector<double> d2;
+  SquaredDistanceTransform(feature, nx, ny, &d2);
+  for (int y = 0; y < ny; ++y) {
+    for (int x = 0; x < nx; ++x) {
+      double best = kFarSquared;
+      for (int fy = 0; fy < ny; ++fy) {
+        for (int fx = 0; fx < nx; ++fx) {
+          if (feature[size_t(fy * nx + fx)]) {
+            best = std::min(best, double((fx - x) * (fx - x) + (fy - y) * (fy - y)));
+          }
+        }
+      }
+      EXPECT_EQ(d2[size_t(y * nx + x)], best) << x << "," << y;
+    }
+  }
+  std::vector<uint8_t> none(size_t(nx * ny), 0);
+  SquaredDistanceTransform(none, nx, ny, &d2);
+  for (double d : d2) EXPECT_EQ(d, kFarSquared);
+}
+
+TEST(Lattice, HeadingsAreTheSixteenCellStepsInOrder) {
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const double yaw = HeadingYaw(k);
+    const double next = HeadingYaw((k + 1) % kNumHeadings);
+    double gap = next - yaw;
+    if (gap <= 0) gap += 2 * M_PI;
+    EXPECT_GT(gap, 0.3);
+    EXPECT_LT(gap, 0.47);
+    EXPECT_EQ(NearestHeading(yaw + 0.05), k);
+    // a quarter turn of a step is the step four headings on
+    const CellStep s = HeadingStep(k), q = HeadingStep((k + 4) % kNumHeadings);
+    EXPECT_EQ(q.dx, -s.dy);
+    EXPECT_EQ(q.dy, s.dx);
+  }
+}
+
+TEST(Lattice, CrawlZoneSurroundsTheTunnel) {
+  Fog fog = FlatFog(60, 30, 0.04);
+  FillBox(&fog, 1.0, 0.0, 1.4, 1.2, CellType::kTunnel, 0.0f);
+  Lattice lattice(fog, {2.2, 0.6}, PlannerParams());
+  EXPECT_TRUE(lattice.CrawlAllowedAt(30, 15));  // under the table
+  EXPECT_TRUE(lattice.CrawlAllowedAt(20, 15));  // 0.2 m before it
+  EXPECT_FALSE(lattice.CrawlAllowedAt(5, 15));  // 0.8 m before it
+}
+
+TEST(Lattice, ClearanceCostGrowsWithObstacleHeight) {
+  Fog fog = FlatFog(60, 40, 0.04);
+  FillBox(&fog, 0.40, 0.40, 0.48, 0.48, CellType::kObstacle, 0.08f);
+  FillBox(&fog, 1.60, 0.40, 1.68, 0.48, CellType::kObstacle, 0.20f);
+  Lattice lattice(fog, {2.2, 0.6}, PlannerParams());
+  // 0.2 m from each obstacle
+  EXPECT_GT(lattice.CellCost(46, 10), 2.0 * lattice.CellCost(16, 10));
+  EXPECT_GT(lattice.CellCost(16, 10), 0.0);
+  EXPECT_EQ(lattice.CellCost(30, 35), 0.0);  // far from both
+}
+
+}  // namespace
+}  // namespace fognav::navigation::internal

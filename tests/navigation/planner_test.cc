@@ -1,0 +1,476 @@
+#include "navigation/planner.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "navigation/internal/test_worlds.h"
+
+namespace fognav::navigation {
+namespace {
+
+using internal::ClassifyFloorChanges;
+using internal::FillBox;
+using internal::FlatFog;
+using perception::CellType;
+using perception::Fog;
+using perception::Pose2;
+
+int Count(const PlanResult& r, Move m) {
+  return int(std::count_if(r.path.begin(), r.path.end(),
+                           [&](const PathPose& q) { return q.move == m; }));
+}
+
+std::string Moves(const PlanResult& r) {
+  std::string s;
+  for (const PathPose& q : r.path) s += std::string(MoveName(q.move)) + " ";
+  return s;
+}
+
+// Cells under a pose's footprint, computed here from the parameters independently of the
+// planner: cells whose centre lies in the grown rectangle.
+std::vector<std::pair<int, int>> FootprintCells(const Fog& fog, const PathPose& q,
+                                                const PlannerParams& p) {
+  const bool up = q.posture == Posture::kUpright;
+  const double a = 0.5 * (up ? p.depth : p.crawl_length) + p.margin;
+  const double b = 0.5 * (up ? p.shoulder_width : p.crawl_width) + p.margin;
+  std::vector<std::pair<int, int>> cells;
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      const Eigen::Vector2d d = fog.window.CellCenter(ix, iy) - Eigen::Vector2d(q.pose_G.x, q.pose_G.y);
+      const double u = d.x() * std::cos(q.pose_G.yaw) + d.y() * std::sin(q.pose_G.yaw);
+      const double v = -d.x() * std::sin(q.pose_G.yaw) + d.y() * std::cos(q.pose_G.yaw);
+      if (std::abs(u) <= a + 1e-6 && std::abs(v) <= b + 1e-6) cells.push_back({ix, iy});
+    }
+  }
+  return cells;
+}
+
+// Checks every pose after the start: no obstacle or border cell under any footprint, no tunnel
+// cell under an upright one, a crawling footprint only on tunnel and floor cells.
+void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerParams& p) {
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    for (const auto& [ix, iy] : FootprintCells(fog, r.path[i], p)) {
+      const CellType t = fog.TypeAt(ix, iy);
+      ASSERT_NE(t, CellType::kObstacle) << "pose " << i << " cell " << ix << "," << iy;
+      ASSERT_NE(t, CellType::kBorder) << "pose " << i << " cell " << ix << "," << iy;
+      if (r.path[i].posture == Posture::kUpright) {
+        ASSERT_NE(t, CellType::kTunnel) << "pose " << i << " cell " << ix << "," << iy;
+      } else {
+        ASSERT_TRUE(t == CellType::kTunnel || t == CellType::kFloor)
+            << "pose " << i << " cell " << ix << "," << iy;
+      }
+    }
+  }
+}
+
+// y of the path where it crosses x (linear between poses).
+double YAtX(const PlanResult& r, double x) {
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const Pose2& a = r.path[i - 1].pose_G;
+    const Pose2& b = r.path[i].pose_G;
+    if ((a.x - x) * (b.x - x) <= 0 && a.x != b.x) return a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x);
+  }
+  return NAN;
+}
+
+TEST(Planner, OpenFloorGivesStraightWalk) {
+  const Fog fog = FlatFog(75, 50, 0.04);  // 3 m x 2 m
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 1.02, 0.0}, {2.50, 1.02}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_TRUE(r.reaches_goal);
+  EXPECT_EQ(Count(r, Move::kWalk), int(r.path.size()) - 1) << Moves(r);
+  for (const PathPose& q : r.path) {
+    EXPECT_NEAR(q.pose_G.y, 1.02, 1e-9);
+    EXPECT_NEAR(q.pose_G.yaw, 0.0, 1e-9);
+  }
+  EXPECT_NEAR(r.path.back().pose_G.x, 2.50, p.goal_tolerance + 1e-9);
+  EXPECT_NEAR(r.length, r.path.back().pose_G.x - 0.50, 1e-9);
+  EXPECT_NEAR(r.cost, r.length * p.walk_factor, 1e-9);  // no obstacles, no unknown
+}
+
+TEST(Planner, TurnsTowardAGoalBehind) {
+  const Fog fog = FlatFog(75, 50, 0.04);
+  const PlanResult r = Plan(fog, {2.02, 1.02, 0.0}, {0.50, 1.02}, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_GT(Count(r, Move::kTurn), 0) << Moves(r);
+  EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
+  EXPECT_NEAR(std::abs(r.path.back().pose_G.yaw), M_PI, 1e-9);
+}
+
+// Fig. 12 of the paper: walking between an 8 cm and a 20 cm obstacle, the robot keeps further
+// from the taller one.
+TEST(Planner, PassesBetweenObstaclesFurtherFromTheTallerOne) {
+  for (const bool tall_below : {true, false}) {
+    Fog fog = FlatFog(75, 70, 0.04);  // 3 m x 2.8 m
+    const float below = tall_below ? 0.20f : 0.08f, above = tall_below ? 0.08f : 0.20f;
+    FillBox(&fog, 1.32, 0.80, 1.72, 1.12, CellType::kObstacle, below);  // gap y in [1.12, 1.72)
+    FillBox(&fog, 1.32, 1.72, 1.72, 2.04, CellType::kObstacle, above);
+    const PlannerParams p;
+    const PlanResult r = Plan(fog, {0.30, 1.42, 0.0}, {2.70, 1.42}, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    const double y = YAtX(r, 1.52);
+    ASSERT_TRUE(std::isfinite(y)) << Moves(r);
+    if (tall_below) {
+      EXPECT_GE(y, 1.42 + 0.03) << "should keep away from the 20 cm obstacle below";
+    } else {
+      EXPECT_LE(y, 1.42 - 0.03) << "should keep away from the 20 cm obstacle above";
+    }
+    ExpectFootprintsClear(fog, r, p);
+  }
+}
+
+// Two obstacles side by side across the way, with a passage on each side: the robot goes round
+// the 8 cm one, away from the 20 cm one.
+TEST(Planner, ChoosesThePassageAwayFromTheTallerObstacle) {
+  for (const bool tall_below : {true, false}) {
+    Fog fog = FlatFog(75, 70, 0.04);
+    const float below = tall_below ? 0.20f : 0.08f, above = tall_below ? 0.08f : 0.20f;
+    FillBox(&fog, 1.32, 1.12, 1.72, 1.40, CellType::kObstacle, below);
+    FillBox(&fog, 1.32, 1.44, 1.72, 1.72, CellType::kObstacle, above);
+    FillBox(&fog, 1.32, 1.40, 1.72, 1.44, CellType::kObstacle, 0.14f);
+    const PlannerParams p;
+    const PlanResult r = Plan(fog, {0.30, 1.42, 0.0}, {2.70, 1.42}, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    const double y = YAtX(r, 1.52);
+    ASSERT_TRUE(std::isfinite(y));
+    if (tall_below) {
+      EXPECT_GT(y, 1.72) << Moves(r);
+    } else {
+      EXPECT_LT(y, 1.12) << Moves(r);
+    }
+    ExpectFootprintsClear(fog, r, p);
+  }
+}
+
+// A wall across the map at x in [1.5, 1.6) with one gap in y in [gap_y0, gap_y1).
+Fog WallWithGap(double resolution, double gap_y0, double gap_y1) {
+  const int nx = int(std::lround(3.0 / resolution)), ny = int(std::lround(2.4 / resolution));
+  Fog fog = FlatFog(nx, ny, resolution);
+  FillBox(&fog, 1.5, -1.0, 1.6, gap_y0, CellType::kObstacle, 0.20f);
+  FillBox(&fog, 1.5, gap_y1, 1.6, 3.0, CellType::kObstacle, 0.20f);
+  return fog;
+}
+
+// Every pose whose origin is within the wall's x range got there by side-stepping.
+void ExpectSidestepsThroughWall(const PlanResult& r) {
+  int inside = 0;
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const PathPose& q = r.path[i];
+    if (q.pose_G.x > 1.46 && q.pose_G.x < 1.64) {
+      ++inside;
+      EXPECT_TRUE(q.move == Move::kSidestep) << "pose " << i << ": " << Moves(r);
+    }
+  }
+  EXPECT_GT(inside, 0);
+}
+
+TEST(Planner, SidestepsThroughA22cmGap) {
+  const PlannerParams p;
+  // exact geometry on 2 cm cells: the gap is 11 cells
+  {
+    const Fog fog = WallWithGap(0.02, 1.00, 1.22);
+    const PlanResult r = Plan(fog, {0.50, 1.11, 0.0}, {2.50, 1.11}, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk);
+    ExpectSidestepsThroughWall(r);
+    ExpectFootprintsClear(fog, r, p);
+  }
+  // the same gap on the map's 4 cm cells, where it shows as 5 or 4 free cells
+  for (const double y0 : {1.00, 0.99}) {
+    const Fog fog = WallWithGap(0.04, y0, y0 + 0.22);
+    const PlanResult r = Plan(fog, {0.50, 1.10, 0.0}, {2.50, 1.10}, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk) << "gap from " << y0;
+    ExpectSidestepsThroughWall(r);
+    ExpectFootprintsClear(fog, r, p);
+  }
+}
+
+TEST(Planner, WalksFacingThroughAWideGap) {
+  const Fog fog = WallWithGap(0.04, 0.80, 1.40);
+  const PlanResult r = Plan(fog, {0.50, 1.10, 0.0}, {2.50, 1.10}, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
+}
+
+TEST(Planner, NoPathThroughAGapNarrowerThanTheDepth) {
+  const PlannerParams p;
+  {
+    const Fog fog = WallWithGap(0.02, 1.00, 1.10);  // 0.10 m < 0.12 m depth
+    const PlanResult r = Plan(fog, {0.50, 1.05, 0.0}, {2.50, 1.05}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath);
+    EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+    EXPECT_TRUE(r.path.empty());
+  }
+  {
+    const Fog fog = WallWithGap(0.04, 1.00, 1.08);  // two free cells
+    const PlanResult r = Plan(fog, {0.50, 1.06, 0.0}, {2.50, 1.06}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath);
+    EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  }
+}
+
+// A corridor (walls at y < 0.6 and y >= 1.8) crossed by a table at x in [1.4, 2.0).
+Fog CorridorWithTable() {
+  Fog fog = FlatFog(80, 60, 0.04);  // 3.2 m x 2.4 m
+  FillBox(&fog, 0.0, 0.0, 3.2, 0.6, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 1.4, 0.6, 2.0, 1.8, CellType::kTunnel, 0.0f);
+  for (double x : {1.4, 1.96}) {
+    for (double y : {0.6, 1.76}) FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
+  }
+  return fog;
+}
+
+TEST(Planner, CrawlsUnderATableAcrossACorridor) {
+  const Fog fog = CorridorWithTable();
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 1.22, 0.0}, {2.70, 1.22}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_TRUE(r.reaches_goal);
+  EXPECT_GT(Count(r, Move::kCrawl), 2) << Moves(r);
+  // down before the table, up after it, crawling wherever the origin is under it
+  int changes = 0;
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const PathPose& q = r.path[i];
+    if (q.posture != r.path[i - 1].posture) {
+      ++changes;
+      EXPECT_EQ(q.move, Move::kCrawl);
+    }
+    int ix = 0, iy = 0;
+    fog.window.CellOf(q.pose_G.x, q.pose_G.y, &ix, &iy);
+    if (fog.TypeAt(ix, iy) == CellType::kTunnel) {
+      EXPECT_EQ(q.posture, Posture::kCrawling);
+    }
+  }
+  EXPECT_GE(changes, 1);
+  ExpectFootprintsClear(fog, r, p);
+}
+
+TEST(Planner, NeverCrawlsWithoutATunnel) {
+  const Fog fog = FlatFog(75, 50, 0.04);
+  PlannerParams p;
+  p.crawl_factor = 0.5 * p.walk_factor + 0.6;  // even if crawling were cheap
+  p.posture_change_cost = 0.0;
+  const PlanResult r = Plan(fog, {0.50, 1.02, 0.0}, {2.50, 1.02}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(Count(r, Move::kCrawl), 0) << Moves(r);
+}
+
+// Open floor 3 m x 1.6 m crossed by treads spanning its width.
+Fog Treads(const std::vector<std::pair<double, float>>& treads_x0_height, double end_x) {
+  Fog fog = FlatFog(75, 40, 0.04);
+  for (size_t i = 0; i < treads_x0_height.size(); ++i) {
+    const double x1 = i + 1 < treads_x0_height.size() ? treads_x0_height[i + 1].first : end_x;
+    FillBox(&fog, treads_x0_height[i].first, 0.0, x1, 1.6, CellType::kFloor,
+            treads_x0_height[i].second);
+  }
+  ClassifyFloorChanges(&fog, 0.015, 0.05);
+  return fog;
+}
+
+TEST(Planner, ClimbsA3cmTreadUpThenDown) {
+  const Fog fog = Treads({{1.4, 0.03f}}, 1.72);
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(Count(r, Move::kStairsUp), 1) << Moves(r);
+  EXPECT_EQ(Count(r, Move::kStairsDown), 1) << Moves(r);
+  const auto up = std::find_if(r.path.begin(), r.path.end(),
+                               [](const PathPose& q) { return q.move == Move::kStairsUp; });
+  const auto down = std::find_if(r.path.begin(), r.path.end(),
+                                 [](const PathPose& q) { return q.move == Move::kStairsDown; });
+  EXPECT_LT(up - r.path.begin(), down - r.path.begin());
+  EXPECT_NEAR(up->pose_G.x, 1.42, 0.05);
+  EXPECT_NEAR(down->pose_G.x, 1.74, 0.05);
+  EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
+}
+
+TEST(Planner, ClimbsTheCourseStairs) {
+  const Fog fog = Treads({{1.0, 0.03f}, {1.25, 0.06f}, {1.6, 0.03f}}, 1.85);
+  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(Count(r, Move::kStairsUp), 2) << Moves(r);
+  EXPECT_EQ(Count(r, Move::kStairsDown), 2) << Moves(r);
+}
+
+TEST(Planner, RefusesAn8cmStep) {
+  const PlannerParams p;
+  {
+    const Fog fog = Treads({{1.4, 0.08f}}, 1.72);  // the step edges are border
+    const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath);
+    EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  }
+  {
+    // even when the map calls its edges stairs, an 8 cm height change is never crossed
+    Fog fog = Treads({{1.4, 0.03f}}, 1.72);
+    for (size_t i = 0; i < fog.height.size(); ++i) {
+      if (fog.height[i] > 0.02f) fog.height[i] = 0.08f;
+    }
+    const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  }
+}
+
+// A raised platform (10 cm) at the middle of open floor: its rim is border.
+Fog RaisedPlatform() {
+  Fog fog = FlatFog(75, 75, 0.04);  // 3 m x 3 m
+  FillBox(&fog, 1.0, 1.0, 2.0, 2.0, CellType::kFloor, 0.10f);
+  ClassifyFloorChanges(&fog, 0.015, 0.05);
+  return fog;
+}
+
+TEST(Planner, NeverCrossesABorderRing) {
+  const Fog fog = RaisedPlatform();
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.70, 1.50}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  ExpectFootprintsClear(fog, r, p);
+  EXPECT_EQ(Count(r, Move::kStairsUp) + Count(r, Move::kStairsDown), 0);
+  for (const PathPose& q : r.path) {
+    EXPECT_FALSE(q.pose_G.x > 0.96 && q.pose_G.x < 2.04 && q.pose_G.y > 0.96 && q.pose_G.y < 2.04);
+  }
+}
+
+TEST(Planner, GoalInsideABorderRingIsEnclosed) {
+  const Fog fog = RaisedPlatform();
+  const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {1.50, 1.50}, PlannerParams());
+  EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  EXPECT_STREQ(NoPathReasonName(r.reason), "goal_enclosed");
+}
+
+TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
+  Fog fog = FlatFog(75, 75, 0.04);
+  FillBox(&fog, 1.6, 1.0, 2.6, 1.08, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.6, 1.92, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.6, 1.0, 1.68, 2.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 2.52, 1.0, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, PlannerParams());
+  EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+}
+
+TEST(Planner, ReportsABlockedGoalAndABlockedStart) {
+  Fog fog = FlatFog(75, 75, 0.04);
+  FillBox(&fog, 2.0, 1.0, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  const PlanResult goal = Plan(fog, {0.30, 1.50, 0.0}, {2.30, 1.50}, PlannerParams());
+  EXPECT_EQ(goal.status, PlanStatus::kNoPath);
+  EXPECT_EQ(goal.reason, NoPathReason::kGoalBlocked);
+  const PlanResult start = Plan(fog, {2.30, 1.50, 0.0}, {0.30, 1.50}, PlannerParams());
+  EXPECT_EQ(start.status, PlanStatus::kNoPath);
+  EXPECT_EQ(start.reason, NoPathReason::kStartBlocked);
+  const PlanResult outside = Plan(fog, {-1.0, 1.50, 0.0}, {0.30, 1.50}, PlannerParams());
+  EXPECT_EQ(outside.reason, NoPathReason::kStartBlocked);
+}
+
+TEST(Planner, ShufflesFreeFromAStartTouchingAnObstacle) {
+  Fog fog = FlatFog(75, 50, 0.04);
+  FillBox(&fog, 0.0, 1.12, 3.0, 1.16, CellType::kObstacle, 0.1f);  // 0.12 m left of the start
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 1.02, 0.0}, {2.50, 1.02}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  ASSERT_GE(r.path.size(), 2u);
+  EXPECT_EQ(r.path[1].move, Move::kSidestep);
+  EXPECT_LT(r.path[1].pose_G.y, 1.02);
+  ExpectFootprintsClear(fog, r, p);
+}
+
+TEST(Planner, PlansIntoUnknownAtAPenalty) {
+  // a band of unknown cells across the way: crossed straight, at the penalty per metre
+  Fog fog = FlatFog(75, 75, 0.04);
+  FillBox(&fog, 1.2, 0.0, 2.0, 3.0, CellType::kUnknown, -INFINITY);
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.70, 1.50}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  for (const PathPose& q : r.path) EXPECT_NEAR(q.pose_G.y, 1.50, 1e-9);
+  EXPECT_NEAR(r.cost, r.length * p.walk_factor + 0.8 * p.unknown_penalty, 1e-9);
+  PlannerParams no_unknown = p;
+  no_unknown.unknown_penalty = 1e6;
+  EXPECT_GT(Plan(fog, {0.30, 1.50, 0.0}, {2.70, 1.50}, no_unknown).cost, 1e4);
+}
+
+TEST(Planner, GoalOutsideTheWindowPlansToTheBestCellTowardIt) {
+  Fog fog = FlatFog(50, 50, 0.04);  // 2 m x 2 m
+  FillBox(&fog, 1.2, 0.0, 1.3, 1.4, CellType::kObstacle, 0.3f);  // wall open at the top
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.30, 1.00, 0.0}, {5.0, 1.0}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_FALSE(r.reaches_goal);
+  EXPECT_GT(r.path.back().pose_G.x, 1.8);  // went round the wall to the far edge
+  ExpectFootprintsClear(fog, r, p);
+}
+
+TEST(Planner, StartsCrawlingUnderATable) {
+  const Fog fog = CorridorWithTable();
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {1.70, 1.22, 0.0}, {2.70, 1.22}, p, Posture::kCrawling);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(r.path[1].posture, Posture::kCrawling);
+  EXPECT_EQ(r.path.back().posture, Posture::kUpright);
+  ExpectFootprintsClear(fog, r, p);
+}
+
+TEST(Planner, RunsTheCourseWithEveryMove) {
+  const internal::Course course = internal::PaperCourse();
+  const PlannerParams p;
+  const PlanResult r = Plan(course.fog, course.start_G, course.goal_G, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  EXPECT_TRUE(r.reaches_goal);
+  EXPECT_EQ(Count(r, Move::kStairsUp), 2) << Moves(r);
+  EXPECT_EQ(Count(r, Move::kStairsDown), 2) << Moves(r);
+  EXPECT_GT(Count(r, Move::kSidestep), 0) << Moves(r);
+  EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
+  EXPECT_GT(Count(r, Move::kWalk), 0) << Moves(r);
+  ExpectFootprintsClear(course.fog, r, p);
+  // between the 8 cm block (y > 0.12) and the 20 cm block (y < -0.22): nearer the low one
+  EXPECT_GT(YAtX(r, 0.55), -0.05);
+}
+
+TEST(Planner, NamesMovesAndStates) {
+  EXPECT_STREQ(MoveName(Move::kWalk), "walk");
+  EXPECT_STREQ(MoveName(Move::kSidestep), "sidestep");
+  EXPECT_STREQ(MoveName(Move::kTurn), "turn");
+  EXPECT_STREQ(MoveName(Move::kStairsUp), "stairs_up");
+  EXPECT_STREQ(MoveName(Move::kStairsDown), "stairs_down");
+  EXPECT_STREQ(MoveName(Move::kCrawl), "crawl");
+  EXPECT_STREQ(MoveName(Move::kNone), "none");
+  EXPECT_STREQ(PostureName(Posture::kCrawling), "crawling");
+  EXPECT_STREQ(PlanStatusName(PlanStatus::kNoPath), "no_path");
+  EXPECT_STREQ(NoPathReasonName(NoPathReason::kStartBlocked), "start_blocked");
+}
+
+TEST(PathPicture, DrawsThePathOverTheMap) {
+  const Fog fog = CorridorWithTable();
+  const Eigen::Vector2d goal(2.70, 1.22);
+  const PlanResult r = Plan(fog, {0.50, 1.22, 0.0}, goal, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  const int px = 4;
+  perception::RgbImage picture = DrawFogPlain(fog, px);
+  ASSERT_EQ(picture.width, 80 * px);
+  ASSERT_EQ(picture.height, 60 * px);
+  // the top-left corner is wall (black), a floor cell is light grey
+  EXPECT_EQ(picture.at(0, 0).r, 0);
+  const Eigen::Vector2i floor_px = CellPixel(fog.window, px, 5, 30);
+  EXPECT_GT(picture.at(floor_px.x(), floor_px.y()).r, 200);
+  const perception::RgbImage before = picture;
+  DrawPath(r, fog.window, px, &picture);
+  DrawGoal(goal, fog.window, px, &picture);
+  // a walked cell of the path turns blue, a crawled one red
+  const Eigen::Vector2i walk_px = CellPixel(fog.window, px, 25, 30);
+  EXPECT_GT(picture.at(walk_px.x(), walk_px.y()).b, 150);
+  EXPECT_LT(picture.at(walk_px.x(), walk_px.y()).r, 120);
+  const Eigen::Vector2i crawl_px = CellPixel(fog.window, px, 42, 30);
+  EXPECT_GT(picture.at(crawl_px.x(), crawl_px.y()).r, 180);
+  EXPECT_LT(picture.at(crawl_px.x(), crawl_px.y()).g, 100);
+  // far from the path nothing changed
+  const Eigen::Vector2i far_px = CellPixel(fog.window, px, 10, 20);
+  EXPECT_EQ(picture.at(far_px.x(), far_px.y()).r, before.at(far_px.x(), far_px.y()).r);
+}
+
+}  // namespace
+}  // namespace fognav::navigation
