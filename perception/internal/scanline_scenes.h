@@ -5,6 +5,7 @@
 #define FOGNAV_PERCEPTION_INTERNAL_SCANLINE_SCENES_H_
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <vector>
@@ -117,6 +118,60 @@ inline void AddDepthNoise(DepthImage* depth, double sigma_at_1m, unsigned seed) 
   std::normal_distribution<double> normal(0.0, 1.0);
   for (float& z : depth->data)
     if (std::isfinite(z)) z = float(z + sigma_at_1m * double(z) * z * normal(rng));
+}
+
+// Smooth random texture in [0, 1] on world points: value noise of two octaves (cells of 30 mm
+// and 12 mm), the same from every view, so that rendered stereo pairs can be matched.
+inline double SceneTexture(const Eigen::Vector3d& p_W) {
+  auto lattice = [](int64_t x, int64_t y, int64_t z) {
+    uint64_t h = uint64_t(x) * 0x9E3779B97F4A7C15ull ^ uint64_t(y) * 0xC2B2AE3D27D4EB4Full ^
+                 uint64_t(z) * 0x165667B19E3779F9ull;
+    h ^= h >> 31;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 29;
+    return double(h & 0xFFFF) / 65535.0;
+  };
+  auto noise = [&](const Eigen::Vector3d& q) {
+    const Eigen::Vector3d f = q.array().floor();
+    const Eigen::Vector3d t = q - f;
+    const int64_t x = int64_t(f.x()), y = int64_t(f.y()), z = int64_t(f.z());
+    double sum = 0;
+    for (int c = 0; c < 8; ++c) {
+      const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+      const double w = (dx ? t.x() : 1 - t.x()) * (dy ? t.y() : 1 - t.y()) *
+                       (dz ? t.z() : 1 - t.z());
+      sum += w * lattice(x + dx, y + dy, z + dz);
+    }
+    return sum;
+  };
+  return 0.65 * noise(p_W / 0.03) + 0.35 * noise(p_W / 0.012 + Eigen::Vector3d(17, 5, 3));
+}
+
+// Grey image of the textured scene seen from X_WC (black where nothing is hit).
+inline RgbImage RenderTextured(const Scene& scene, const CameraIntrinsics& K,
+                               const Eigen::Isometry3d& X_WC) {
+  const SceneView view = RenderScene(scene, K, X_WC);
+  RgbImage image(K.width_px, K.height_px);
+  for (int v = 0; v < K.height_px; ++v) {
+    for (int u = 0; u < K.width_px; ++u) {
+      const double z = view.depth.at(u, v);
+      if (!std::isfinite(z)) continue;
+      const Eigen::Vector3d p_C((u - K.cx) / K.fx * z, (v - K.cy) / K.fy * z, z);
+      const auto g = uint8_t(std::lround(30 + 200 * SceneTexture(X_WC * p_C)));
+      image.at(u, v) = Rgb{g, g, g};
+    }
+  }
+  return image;
+}
+
+// A rectified stereo pair of the textured scene: left camera X_WC, right camera K.baseline
+// along the left camera's x axis.
+inline void RenderStereoPair(const Scene& scene, const CameraIntrinsics& K,
+                             const Eigen::Isometry3d& X_WC, RgbImage* left, RgbImage* right) {
+  *left = RenderTextured(scene, K, X_WC);
+  Eigen::Isometry3d X_WR = X_WC;
+  X_WR.translation() += X_WC.linear().col(0) * K.baseline;
+  *right = RenderTextured(scene, K, X_WR);
 }
 
 // A staircase in front of a camera at the origin: num_steps boxes along +x starting at x0, each

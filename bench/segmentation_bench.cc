@@ -1,0 +1,154 @@
+// Benchmarks of stereo range data and plane segmentation on analytic scenes (a floor, a
+// three-step staircase, a low box and a wall), with OpenCV's RgbdPlane beside ours when the
+// rgbd module is available. Counters: planes found and the Table 2 accuracy / coverage against
+// the scene's surfaces (DESIGN.md "Ground truth").
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <benchmark/benchmark.h>
+#ifdef FOGNAV_HAVE_OPENCV_RGBD
+#include <opencv2/core.hpp>
+#include <opencv2/rgbd.hpp>
+#endif
+
+#include "perception/internal/scanline_scenes.h"
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::Scene;
+
+// The bench course seen from the humanoid's head (0.55 m, pitched down 25°).
+Scene BenchScene() {
+  Scene scene = internal::Staircase(1.0, 3, 0.25, 0.03);
+  scene.boxes.push_back({Eigen::Vector3d(0.6, 0.25, 0), Eigen::Vector3d(0.8, 0.45, 0.08)});
+  scene.boxes.push_back({Eigen::Vector3d(2.6, -3, 0), Eigen::Vector3d(2.8, 3, 2)});
+  return scene;
+}
+
+Eigen::Isometry3d BenchCamera() { return internal::SceneCamera(0, -0.1, 0.55, 25 * M_PI / 180); }
+
+// A point image of the bench scene with stereo-like depth noise (2 mm at 1 m, growing with z^2)
+// and its ground truth, made once per size.
+struct BenchInput {
+  PointImage points;
+  internal::SceneView truth;
+  CameraIntrinsics K;
+};
+
+const BenchInput& Input(int w, int h) {
+  static std::map<std::pair<int, int>, BenchInput> cache;
+  auto it = cache.find({w, h});
+  if (it != cache.end()) return it->second;
+  BenchInput in;
+  in.K = internal::SceneIntrinsics(w, h);
+  in.truth = internal::RenderScene(BenchScene(), in.K, BenchCamera());
+  DepthImage noisy = in.truth.depth;
+  internal::AddDepthNoise(&noisy, 0.002, 1);
+  in.points = DepthPointImage(noisy, in.K);
+  return cache.emplace(std::make_pair(w, h), std::move(in)).first->second;
+}
+
+void SetScoreCounters(benchmark::State& state, const LabelImage& labels, const BenchInput& in) {
+  const SegmentationScore s = ScoreSegmentation(labels, in.truth.surface, in.truth.depth);
+  state.counters["planes"] = s.planes;
+  state.counters["accuracy"] = s.accuracy;
+  state.counters["coverage"] = s.coverage;
+  state.counters["correct"] = s.correct;
+  state.counters["truth"] = s.truth_surfaces;
+}
+
+void BM_Segmentation(benchmark::State& state) {
+  const BenchInput& in = Input(int(state.range(0)), int(state.range(1)));
+  PlaneSet set;
+  for (auto _ : state) {
+    set = SegmentPlanes(in.points);
+    benchmark::DoNotOptimize(set.planes.data());
+  }
+  SetScoreCounters(state, set.labels, in);
+}
+BENCHMARK(BM_Segmentation)
+    ->Name("Segmentation/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Segmentation)
+    ->Name("Segmentation/320x240")->Args({320, 240})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Segmentation)
+    ->Name("Segmentation/640x480")->Args({640, 480})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Segmentation)
+    ->Name("Segmentation/88x72")->Args({88, 72})->Unit(benchmark::kMillisecond);
+
+// the UB method (classic split, d_cord / d_line) on the same points, for the paper's comparison
+void BM_SegmentationUb(benchmark::State& state) {
+  const BenchInput& in = Input(int(state.range(0)), int(state.range(1)));
+  SegmentParams p;
+  p.method = LineMethod::kSplit;
+  PlaneSet set;
+  for (auto _ : state) {
+    set = SegmentPlanes(in.points, p);
+    benchmark::DoNotOptimize(set.planes.data());
+  }
+  SetScoreCounters(state, set.labels, in);
+}
+BENCHMARK(BM_SegmentationUb)
+    ->Name("SegmentationUB/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+
+void BM_Stereo(benchmark::State& state) {
+  const auto K = internal::SceneIntrinsics(int(state.range(0)), int(state.range(1)));
+  RgbImage left, right;
+  internal::RenderStereoPair(BenchScene(), K, BenchCamera(), &left, &right);
+  PointImage points;
+  for (auto _ : state) {
+    points = StereoPointImage(left, right, K);
+    benchmark::DoNotOptimize(points.points.data());
+  }
+  // segmentation of the matched points, scored against the scene
+  BenchInput in;
+  in.truth = internal::RenderScene(BenchScene(), K, BenchCamera());
+  SetScoreCounters(state, SegmentPlanes(points).labels, in);
+}
+BENCHMARK(BM_Stereo)->Name("Stereo/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+
+#ifdef FOGNAV_HAVE_OPENCV_RGBD
+// OpenCV's plane finder (cv::rgbd::RgbdPlane with RgbdNormals) on the same point images; the
+// timing includes the normals.
+void BM_OpenCvRgbdPlane(benchmark::State& state) {
+  const BenchInput& in = Input(int(state.range(0)), int(state.range(1)));
+  cv::Mat points(in.points.height, in.points.width, CV_32FC3);
+  for (int v = 0; v < in.points.height; ++v)
+    for (int u = 0; u < in.points.width; ++u) {
+      const Eigen::Vector3f& p = in.points.at(u, v);
+      points.at<cv::Vec3f>(v, u) = cv::Vec3f(p.x(), p.y(), p.z());
+    }
+  const cv::Matx33f K(float(in.K.fx), 0, float(in.K.cx), 0, float(in.K.fy), float(in.K.cy), 0, 0,
+                      1);
+  cv::rgbd::RgbdNormals normals_of(in.points.height, in.points.width, CV_32F, K, 5,
+                                   cv::rgbd::RgbdNormals::RGBD_NORMALS_METHOD_FALS);
+  // block size scaled with the image (40 px at 640x480), sensor error quadratic in depth
+  const int block = std::max(8, in.points.width / 16);
+  cv::rgbd::RgbdPlane planes_of(cv::rgbd::RgbdPlane::RGBD_PLANE_METHOD_DEFAULT, block,
+                                block * block, 0.01, 0, 0, 0.004);
+  cv::Mat normals, mask, coefficients;
+  for (auto _ : state) {
+    normals_of(points, normals);
+    planes_of(points, normals, mask, coefficients);
+    benchmark::DoNotOptimize(mask.data);
+  }
+  LabelImage labels(in.points.width, in.points.height, -1);
+  for (int v = 0; v < mask.rows; ++v)
+    for (int u = 0; u < mask.cols; ++u) {
+      const int m = mask.at<uchar>(v, u);
+      if (m != 255) labels.at(u, v) = m;
+    }
+  SetScoreCounters(state, labels, in);
+}
+BENCHMARK(BM_OpenCvRgbdPlane)
+    ->Name("OpenCvRgbdPlane/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvRgbdPlane)
+    ->Name("OpenCvRgbdPlane/320x240")->Args({320, 240})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OpenCvRgbdPlane)
+    ->Name("OpenCvRgbdPlane/640x480")->Args({640, 480})->Unit(benchmark::kMillisecond);
+#endif
+
+}  // namespace
+}  // namespace fognav::perception

@@ -1,0 +1,119 @@
+// Stereo matching and point images on analytic textured scenes (no renderer).
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "perception/internal/scanline_scenes.h"
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::RenderStereoPair;
+using internal::Scene;
+using internal::SceneCamera;
+using internal::SceneIntrinsics;
+
+// A textured fronto-parallel wall at distance z_m in front of a level camera.
+Scene Wall(double z_m) {
+  Scene scene;
+  scene.floor = false;
+  scene.boxes.push_back({Eigen::Vector3d(z_m, -20, -20), Eigen::Vector3d(z_m + 1, 20, 20)});
+  return scene;
+}
+
+struct DepthError {
+  double rms = 0;   // metres, over valid pixels
+  double valid = 0;  // share of pixels with a point
+};
+
+DepthError StereoWallError(double z_m) {
+  const auto K = SceneIntrinsics(176, 144);
+  RgbImage left, right;
+  RenderStereoPair(Wall(z_m), K, SceneCamera(0, 0, 0, 0), &left, &right);
+  Image<float> disparity;
+  const PointImage points = StereoPointImage(left, right, K, StereoParams(), &disparity);
+  double sum = 0;
+  int n = 0;
+  for (const Eigen::Vector3f& p : points.points) {
+    if (!PointImage::Valid(p)) continue;
+    sum += (p.z() - z_m) * (p.z() - z_m);
+    ++n;
+  }
+  DepthError e;
+  e.rms = n > 0 ? std::sqrt(sum / n) : NAN;
+  e.valid = double(n) / double(points.points.size());
+  return e;
+}
+
+TEST(Stereo, ErrorGrowsWithDistance) {
+  const DepthError near = StereoWallError(1.0);
+  const DepthError far = StereoWallError(3.0);
+  RecordProperty("rms_1m_mm", int(1000 * near.rms));
+  RecordProperty("rms_3m_mm", int(1000 * far.rms));
+  std::printf("depth rms at 1 m %.1f mm (%.0f %% valid), at 3 m %.1f mm (%.0f %% valid)\n",
+              1000 * near.rms, 100 * near.valid, 1000 * far.rms, 100 * far.valid);
+  EXPECT_GE(near.valid, 0.9);
+  EXPECT_GE(far.valid, 0.9);
+  // SGBM's sub-pixel interpolation locks towards whole disparities: about 0.3 px at 10.6 px
+  EXPECT_LT(near.rms, 0.05);
+  EXPECT_GT(far.rms, 3 * near.rms);  // a constant disparity error gives 9x
+}
+
+TEST(Stereo, DisparityMatchesGeometry) {
+  const auto K = SceneIntrinsics(176, 144);
+  RgbImage left, right;
+  RenderStereoPair(Wall(1.0), K, SceneCamera(0, 0, 0, 0), &left, &right);
+  Image<float> disparity;
+  StereoPointImage(left, right, K, StereoParams(), &disparity);
+  const double expected = K.fx * K.baseline / 1.0;
+  std::vector<float> valid;
+  for (float d : disparity.data)
+    if (std::isfinite(d)) valid.push_back(d);
+  ASSERT_FALSE(valid.empty());
+  std::nth_element(valid.begin(), valid.begin() + valid.size() / 2, valid.end());
+  EXPECT_NEAR(valid[valid.size() / 2], expected, 0.4);  // pixel locking, see above
+  const RgbImage picture = DrawDisparity(disparity);
+  EXPECT_EQ(picture.width, 176);
+}
+
+TEST(Stereo, UntexturedPairGivesNoPoints) {
+  const auto K = SceneIntrinsics(176, 144);
+  const RgbImage flat(176, 144, Rgb{128, 128, 128});
+  const PointImage points = StereoPointImage(flat, flat, K);
+  int valid = 0;
+  for (const Eigen::Vector3f& p : points.points) valid += PointImage::Valid(p);
+  EXPECT_LT(valid, 176 * 144 / 20);
+}
+
+TEST(DepthPointImage, BackProjectsAlongTheOpticalAxis) {
+  CameraIntrinsics K = SceneIntrinsics(8, 6);
+  DepthImage depth(8, 6, 2.0f);
+  depth.at(3, 2) = NAN;
+  depth.at(4, 2) = 0.0f;
+  const PointImage points = DepthPointImage(depth, K);
+  EXPECT_FALSE(PointImage::Valid(points.at(3, 2)));
+  EXPECT_FALSE(PointImage::Valid(points.at(4, 2)));
+  const Eigen::Vector3f p = points.at(7, 5);
+  EXPECT_NEAR(p.z(), 2.0, 1e-6);
+  EXPECT_NEAR(p.x(), (7 - K.cx) / K.fx * 2.0, 1e-6);
+  EXPECT_NEAR(p.y(), (5 - K.cy) / K.fy * 2.0, 1e-6);
+}
+
+TEST(Subsample2x, TakesEverySecondPixel) {
+  PointImage points(176, 144);
+  for (int v = 0; v < 144; ++v)
+    for (int u = 0; u < 176; ++u) points.at(u, v) = Eigen::Vector3f(u, v, 1);
+  const PointImage half = Subsample2x(points);
+  ASSERT_EQ(half.width, 88);
+  ASSERT_EQ(half.height, 72);
+  EXPECT_EQ(half.at(10, 20).x(), 20);
+  EXPECT_EQ(half.at(10, 20).y(), 40);
+  const CameraIntrinsics K = Subsample2x(SceneIntrinsics(176, 144));
+  EXPECT_EQ(K.width_px, 88);
+  EXPECT_NEAR(K.fx, SceneIntrinsics(176, 144).fx / 2, 1e-12);
+}
+
+}  // namespace
+}  // namespace fognav::perception
