@@ -88,6 +88,35 @@ StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,
   return view;
 }
 
+Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  Eigen::Vector3d z = (target - eye).normalized();
+  Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Vector3d y = z.cross(x);
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+  X_WC.linear() << x, y, z;
+  X_WC.translation() = eye;
+  return X_WC;
+}
+
+perception::RgbImage RenderOverview(sim::Renderer* renderer, const sim::World& world,
+                                    const Scenario& scenario) {
+  // behind the start, looking down the line from the start to the goal
+  Eigen::Vector2d start(scenario.start.x, scenario.start.y);
+  Eigen::Vector2d along = scenario.goal - start;
+  double length = std::max(1.0, along.norm());
+  along /= length;
+  Eigen::Vector2d eye = start - 0.35 * length * along;
+  Eigen::Vector2d target = start + 0.38 * length * along;
+  auto camera = sim::PinholeCamera::FromFov(
+      LookAt({eye.x(), eye.y(), 0.5 * length}, {target.x(), target.y(), 0.0}), 640, 400, 1.0);
+  sim::RenderedView view = renderer->Render(world.model(), world.data(), camera, {false, false});
+  perception::RgbImage image(view.width, view.height);
+  for (size_t i = 0; i < image.data.size(); ++i) {
+    image.data[i] = {view.rgb[3 * i], view.rgb[3 * i + 1], view.rgb[3 * i + 2]};
+  }
+  return image;
+}
+
 namespace {
 
 void WriteImage(const std::string& path, const cv::Mat& image) {
@@ -103,23 +132,24 @@ cv::Vec3b SurfaceColour(int id) {
 
 }  // namespace
 
+void WritePng(const perception::RgbImage& image, const std::string& path) {
+  cv::Mat mat(image.height, image.width, CV_8UC3);
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const auto& p = image.at(u, v);
+      mat.at<cv::Vec3b>(v, u) = {p.b, p.g, p.r};
+    }
+  }
+  WriteImage(path, mat);
+}
+
 void WriteStereoView(const StereoView& view, const std::string& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) throw InputError(dir + ": cannot create the output directory: " + error.message());
   const int w = view.left.width, h = view.left.height;
-  auto bgr = [&](const perception::RgbImage& image) {
-    cv::Mat mat(h, w, CV_8UC3);
-    for (int v = 0; v < h; ++v) {
-      for (int u = 0; u < w; ++u) {
-        const auto& p = image.at(u, v);
-        mat.at<cv::Vec3b>(v, u) = {p.b, p.g, p.r};
-      }
-    }
-    return mat;
-  };
-  WriteImage(dir + "/left.png", bgr(view.left));
-  WriteImage(dir + "/right.png", bgr(view.right));
+  WritePng(view.left, dir + "/left.png");
+  WritePng(view.right, dir + "/right.png");
   cv::Mat depth_mm(h, w, CV_16UC1), surfaces(h, w, CV_8UC3);
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {

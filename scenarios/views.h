@@ -36,6 +36,16 @@ Eigen::Isometry3d PlaceRobot(sim::World* world, const perception::Pose2& pose);
 StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,
                         const Eigen::Isometry3d& X_WL, const SensorSettings& sensor);
 
+// A camera pose (OpenCV convention) at `eye` looking at `target`, world z up in the image.
+Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& target);
+
+// A 640x400 colour view of the whole course from behind and above the start, for people.
+perception::RgbImage RenderOverview(sim::Renderer* renderer, const sim::World& world,
+                                    const Scenario& scenario);
+
+// Writes an RGB image as PNG. Throws InputError naming the path if it cannot.
+void WritePng(const perception::RgbImage& image, const std::string& path);
+
 // Writes left.png, right.png, depth.png (16-bit millimetres, 0 = nothing seen), surfaces.png
 // (each surface id a distinct colour) and intrinsics.json into dir (created if missing).
 // Throws InputError if dir cannot be written.

@@ -32,8 +32,11 @@ int Render(const std::string& path, const std::string& out) {
   fognav::sim::Renderer renderer(world.model());
   auto view = fognav::scenarios::RenderStereo(&renderer, world, X_WL, scenario.sensor);
   fognav::scenarios::WriteStereoView(view, out);
-  std::cout << "wrote left.png, right.png, depth.png, surfaces.png, intrinsics.json to " << out
-            << "\n";
+  fognav::scenarios::WritePng(fognav::scenarios::RenderOverview(&renderer, world, scenario),
+                              out + "/overview.png");
+  std::cout << "wrote left.png, right.png, depth.png, surfaces.png, intrinsics.json and "
+               "overview.png to "
+            << out << "\n";
   return kExitOk;
 }
 
