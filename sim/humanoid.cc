@@ -92,6 +92,7 @@ Humanoid::Humanoid(const mjModel* m) {
   p_BT_ = BodyPos(m, Id(m, mjOBJ_BODY, "robot_torso"));
   hand_radius_ = m->geom_size[3 * hand_geom_[0]];
   knee_radius_ = m->geom_size[3 * knee_geom_[0]];
+  sole_half_length_ = m->geom_size[3 * sole_geom_[0]];
 
   is_robot_geom_.assign(m->ngeom, 0);
   for (int g = 0; g < m->ngeom; ++g) {
@@ -185,7 +186,9 @@ std::array<double, 2> RobotVerticalExtent(const Humanoid& h, const mjModel* m, c
   for (int g : h.geom_ids()) {
     const Eigen::Isometry3d X_WG = Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
     double reach = 0;
-    if (m->geom_type[g] == mjGEOM_CAPSULE) {
+    if (m->geom_type[g] == mjGEOM_SPHERE) {
+      reach = m->geom_size[3 * g];
+    } else if (m->geom_type[g] == mjGEOM_CAPSULE) {
       reach = std::abs(X_WG.linear()(2, 2)) * m->geom_size[3 * g + 1] + m->geom_size[3 * g];
     } else {
       const Eigen::Vector3d half = GeomHalfBox(m, g);

@@ -84,6 +84,7 @@ class Humanoid {
   int knee_geom(Side s) const { return knee_geom_[int(s)]; }
   double hand_radius() const { return hand_radius_; }  // m, sphere radius of a hand
   double knee_radius() const { return knee_radius_; }  // m, sphere radius of a knee pad
+  double sole_half_length() const { return sole_half_length_; }  // m, sole centre to toe
 
   // Limb dimensions read from the model, for the closed-form IK.
   const internal::LegGeometry& leg(Side s) const { return leg_[int(s)]; }
@@ -101,7 +102,7 @@ class Humanoid {
   std::array<internal::LegGeometry, 2> leg_;
   std::array<internal::ArmGeometry, 2> arm_;
   Eigen::Vector3d p_BT_ = Eigen::Vector3d::Zero();
-  double hand_radius_ = 0, knee_radius_ = 0;
+  double hand_radius_ = 0, knee_radius_ = 0, sole_half_length_ = 0;
   std::vector<int> geom_ids_;
   std::vector<char> is_robot_geom_;
 };

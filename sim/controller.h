@@ -1,0 +1,212 @@
+// Kinematic stepping controller of the humanoid: footsteps, stairs, crawling and head motion.
+//
+// Each control tick sets the base pose and joint angles (no dynamics), runs MuJoCo's forward
+// kinematics and collision detection, and checks the robot's contacts with the world. Motion
+// commands are queued and executed one after another; Tick() advances one control period.
+// Odometry is footstep dead reckoning: the believed pose integrates the commanded strides,
+// while the executed footsteps are perturbed by seeded Gaussian noise.
+#ifndef FOGNAV_SIM_CONTROLLER_H_
+#define FOGNAV_SIM_CONTROLLER_H_
+
+#include <array>
+#include <deque>
+#include <functional>
+#include <map>
+#include <random>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Geometry>
+#include <mujoco/mujoco.h>
+
+#include "sim/humanoid.h"
+#include "sim/internal/gait.h"
+
+namespace fognav::sim {
+
+// A planar pose: position (m) and heading (rad) in some frame (world or odometry).
+struct Pose2 {
+  double x = 0, y = 0, yaw = 0;
+};
+
+// Per-stride limits of the motion commands, chosen for the 0.58 m model (legs 0.2 m).
+// A stride moves the robot frame once: the leading foot steps, the other joins it.
+struct StepLimits {
+  double max_forward = 0.08;   // m per stride
+  double max_backward = 0.04;  // m per stride
+  double max_sideways = 0.05;  // m per stride
+  double max_turn = 0.35;      // rad per stride (20 deg)
+  double max_climb_forward = 0.16;  // m, forward length of a step onto a tread (StepOnto)
+  double max_climb_height = 0.065;  // m, rise or drop of a tread (StepOnto)
+  double max_crawl_forward = 0.06;  // m per crawl cycle (negative: backward, half of it)
+  double max_crawl_turn = 0.25;     // rad per crawl cycle
+};
+
+struct ControllerParams {
+  double control_rate_hz = 100;  // control ticks per second
+  double step_time = 0.5;        // s per footstep
+  double double_support = 0.2;   // share of a footstep with both feet down (half at each end)
+  double stance_width = 0.09;    // m between the soles' centres
+  double hip_height = 0.18;      // m from ankle to hip while standing (knees bent)
+  double max_leg = 0.195;        // m, longest hip-to-ankle distance used (keeps knees bent)
+  double swing_clearance = 0.025;  // m, swing sole above the higher surface (floor or tread)
+  double pelvis_sway = 0.012;      // m, pelvis shift towards the stance foot
+  double head_speed = 2.0;         // rad/s of neck pan and tilt
+  double crawl_cycle_time = 2.0;   // s per crawl cycle (each limb swings once)
+  double transition_time = 3.0;    // s to get down to crawling or to get up
+  double squat_height = 0.165;     // m, pelvis above the floor in the squat of a transition
+  double squat_pitch = 0.5;        // rad, pelvis pitched forward in the squat
+  double kneel_toe_angle = 1.45;   // rad, feet pivot on their toes while the knees come down
+  double kneel_pitch = 0.6;        // rad, pelvis pitch when the knees touch down
+  internal::CrawlShape crawl;
+  StepLimits limits;
+  double odometry_noise_xy = 0;   // m, std-dev per footstep along each axis
+  double odometry_noise_yaw = 0;  // rad, std-dev per footstep
+  unsigned seed = 0;              // of the odometry noise
+  double collision_depth = 0.005;  // m, deeper robot-world contacts are collisions
+  double support_depth = 0.02;     // m, deeper support contacts (soles etc.) count too
+};
+
+// One collision: a robot geom entered a world geom deeper than collision_depth.
+struct Collision {
+  int tick = 0;
+  int robot_geom = -1, world_geom = -1;
+  std::string robot_name, world_name;  // geom names (world: geom, else its body's name)
+  double depth = 0;                   // m, deepest penetration while the contact lasted
+};
+
+// Neck angles, radians: pan positive looks left, tilt positive looks down.
+struct HeadAngles {
+  double pan = 0, tilt = 0;
+};
+
+struct LookAroundParams {
+  std::vector<double> pans = {-1.2, -0.6, 0.0, 0.6, 1.2};  // rad
+  std::vector<double> tilts = {1.1, 0.55};                 // rad, near ring first
+};
+
+// Head views that cover the floor around and ahead of the feet (back and forth in pan, the
+// near ring first), ending looking ahead. The mission runner perceives once at each view.
+std::vector<HeadAngles> LookAroundSweep(const LookAroundParams& params = {});
+
+enum class Mode { kStanding, kCrawling };
+
+class Controller {
+ public:
+  // Looks the humanoid up in m (throws SimError if it is not there).
+  Controller(const mjModel* m, const ControllerParams& params = {});
+
+  // Stands the robot at `start` (world) on a surface of height surface_z, clears the queue
+  // and collisions, and sets the believed pose to `start` (or to `believed` if given).
+  void Reset(const Pose2& start, double surface_z, const mjModel* m, mjData* d);
+  void Reset(const Pose2& start, double surface_z, const Pose2& believed, const mjModel* m, mjData* d);
+
+  // Motion commands, queued. Displacements are in the robot frame at the start of the command.
+  // Walk splits (dx, dy, dyaw) into equal strides within the limits; walking on level ground.
+  void Walk(double dx, double dy, double dyaw);
+  // One stride of dx forward onto a surface dz higher (negative: down) than the current one,
+  // swinging the feet clear of the riser; dz comes from perception (tread planes).
+  // Throws std::invalid_argument beyond max_climb_forward / max_climb_height.
+  void StepOnto(double dx, double dz);
+  // Kneels down onto hands and knees (crawl posture, 0.28 m tall).
+  void GetDown();
+  // Crawls (dx, dyaw) in cycles within the crawl limits.
+  void Crawl(double dx, double dyaw);
+  // Gets up from crawling to standing.
+  void GetUp();
+  // Turns the head to the given neck angles at head_speed.
+  void MoveHead(const HeadAngles& target);
+  // Throws std::logic_error if the command does not fit the mode the queue ends in.
+
+  // True when the queue is empty.
+  bool Idle() const { return queue_.empty(); }
+  // The mode the robot is in (at the current tick).
+  Mode mode() const { return mode_; }
+
+  // One control tick: next posture, mj_kinematics, mj_camlight, mj_collision, collision check.
+  void Tick(const mjModel* m, mjData* d);
+  // Ticks until idle (or max_ticks); calls on_tick after each tick. Returns the ticks run.
+  int RunUntilIdle(const mjModel* m, mjData* d, const std::function<void(int tick)>& on_tick = {},
+                   int max_ticks = 1000000);
+
+  // Footstep odometry: where the robot believes it is (odometry frame = world at Reset).
+  const Pose2& believed_pose() const { return believed_; }
+  // Ground truth from MuJoCo's kinematics (for scoring): the robot frame in the world.
+  Pose2 TruePose(const mjData* d) const;
+  // Footsteps executed so far (each foot placement counts one; crawl cycles count 4).
+  int steps() const { return steps_; }
+  int ticks() const { return tick_; }
+  double dt() const { return 1.0 / params_.control_rate_hz; }
+
+  // Collisions so far, in order of onset; a contact that lasts several ticks counts once.
+  const std::vector<Collision>& collisions() const { return collisions_; }
+
+  const Humanoid& humanoid() const { return humanoid_; }
+  const ControllerParams& params() const { return params_; }
+  // Planned placement of a sole at the end of the queue (world).
+  const internal::FootPlacement& planned_foot(Side s) const { return plan_.feet[int(s)]; }
+
+ private:
+  enum class Kind { kStep, kHead, kTransition, kCrawlCycle };
+  // One queued motion primitive, evaluated at a phase in [0, 1].
+  struct Segment {
+    Kind kind = Kind::kStep;
+    int ticks = 1;
+    Mode mode_after = Mode::kStanding;
+    // kStep: feet before and after, the swinging side and its lift height
+    std::array<internal::FootPlacement, 2> feet_from, feet_to;
+    int swing = 0;
+    double lift_z = 0;
+    // kHead and the head during transitions
+    HeadAngles head_from, head_to;
+    // kTransition: the standing frame it starts (GetDown) or ends (GetUp) in
+    internal::GroundFrame stand;
+    bool getting_up = false;
+    // kCrawlCycle: crawl frames before and after
+    internal::GroundFrame crawl_from, crawl_to;
+    // on completion: the commanded displacement (odometry) and the footsteps it counts
+    Pose2 odometry;
+    int steps = 0;
+  };
+  // State of the robot at the end of the queue, for planning the next command.
+  struct Plan {
+    Mode mode = Mode::kStanding;
+    std::array<internal::FootPlacement, 2> feet;
+    internal::GroundFrame crawl;
+    HeadAngles head;
+  };
+
+  void RequireMode(Mode mode, const char* command) const;
+  void PushStride(double dx, double dy, double dyaw, double dz, bool climb);
+  internal::FootPlacement NoisyFoot(const internal::GroundFrame& frame, int side);
+  Posture StandingPosture(const std::array<internal::FootPlacement, 2>& feet) const;
+  Posture Evaluate(const Segment& seg, double u, HeadAngles* head) const;
+  Posture StepPosture(const Segment& seg, double u) const;
+  Posture CrawlCyclePosture(const Segment& seg, double u) const;
+  Posture CrawlPostureAt(const internal::GroundFrame& frame) const;
+  // kneeling down from the standing frame `stand`: s = 0 stands, s = 1 crawls
+  Posture TransitionPosture(const internal::GroundFrame& stand, double s) const;
+  // how far ahead of the standing frame the knees land
+  double KneelOffset() const;
+  void CheckContacts(const mjModel* m, const mjData* d);
+
+  Humanoid humanoid_;
+  ControllerParams params_;
+  std::mt19937 rng_;
+  std::deque<Segment> queue_;
+  int segment_tick_ = 0;  // ticks done in the front segment
+  Plan plan_;
+  Mode mode_ = Mode::kStanding;
+  HeadAngles head_;
+  Posture current_;
+  Pose2 believed_;
+  int steps_ = 0;
+  int tick_ = 0;
+  std::vector<Collision> collisions_;
+  std::map<std::pair<int, int>, int> touching_;  // (robot geom, world geom) -> collision index
+};
+
+}  // namespace fognav::sim
+
+#endif  // FOGNAV_SIM_CONTROLLER_H_

@@ -1,0 +1,355 @@
+#include "sim/controller.h"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "sim/model.h"
+
+namespace fognav::sim {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+
+std::string World(const std::string& bodies) {
+  return R"(<mujoco model="test_world">
+  <include file="humanoid.xml"/>
+  <worldbody>
+    <geom name="floor" type="plane" size="4 4 0.1"/>
+    )" + bodies + R"(
+  </worldbody>
+</mujoco>)";
+}
+
+// height of the surface under a point (the tests' worlds know their geometry)
+using SurfaceFn = std::function<double(double x, double y)>;
+double Flat(double, double) { return 0.0; }
+
+// Ground-truth checks on every tick: stance feet neither slide nor tilt nor sink, and the
+// head camera's height.
+class Monitor {
+ public:
+  Monitor(const Controller& c, const mjData* d, SurfaceFn surface)
+      : c_(&c), d_(d), surface_(std::move(surface)) {}
+
+  void operator()(int) {
+    const Humanoid& h = c_->humanoid();
+    for (int s = 0; s < 2; ++s) {
+      const int site = h.sole_site(Side(s));
+      const Eigen::Vector3d p(d_->site_xpos[3 * site], d_->site_xpos[3 * site + 1], d_->site_xpos[3 * site + 2]);
+      const double ground = surface_(p.x(), p.y());
+      const double yaw = std::atan2(d_->site_xmat[9 * site + 3], d_->site_xmat[9 * site]);
+      const bool level = d_->site_xmat[9 * site + 8] > std::cos(1 * kDeg);
+      sink_ = std::max(sink_, ground - p.z());
+      if (c_->mode() == Mode::kStanding && p.z() - ground < 5e-4) {
+        // a foot on the ground: compare with where it touched down
+        if (!grounded_[s]) {
+          grounded_[s] = true;
+          anchor_[s] = p;
+          anchor_yaw_[s] = yaw;
+        }
+        slide_ = std::max(slide_, (p - anchor_[s]).norm());
+        twist_ = std::max(twist_, std::abs(std::remainder(yaw - anchor_yaw_[s], 2 * M_PI)));
+        if (!level) ++tilted_ticks_;
+      } else {
+        grounded_[s] = false;
+      }
+    }
+    const double z_cam = HeadCameraPoseInWorld(h, d_, Eye::kLeft).translation().z();
+    cam_min_ = std::min(cam_min_, z_cam);
+    cam_max_ = std::max(cam_max_, z_cam);
+  }
+
+  double slide() const { return slide_; }
+  double twist() const { return twist_; }
+  double sink() const { return sink_; }
+  int tilted_ticks() const { return tilted_ticks_; }
+  double camera_range() const { return cam_max_ - cam_min_; }
+
+ private:
+  const Controller* c_;
+  const mjData* d_;
+  SurfaceFn surface_;
+  bool grounded_[2] = {false, false};
+  Eigen::Vector3d anchor_[2];
+  double anchor_yaw_[2] = {0, 0};
+  double slide_ = 0, twist_ = 0, sink_ = -1;
+  int tilted_ticks_ = 0;
+  double cam_min_ = std::numeric_limits<double>::infinity(), cam_max_ = -cam_min_;
+};
+
+class ControllerTest : public ::testing::Test {
+ protected:
+  void Load(const std::string& bodies, const ControllerParams& params = {}) {
+    m_ = LoadModelFromXml(World(bodies));
+    d_ = MakeData(m_.get());
+    c_ = std::make_unique<Controller>(m_.get(), params);
+    c_->Reset({0, 0, 0}, 0.0, m_.get(), d_.get());
+  }
+  Monitor Run(SurfaceFn surface = Flat) {
+    Monitor monitor(*c_, d_.get(), std::move(surface));
+    c_->RunUntilIdle(m_.get(), d_.get(), std::ref(monitor));
+    return monitor;
+  }
+  void ExpectTruePose(double x, double y, double yaw) {
+    const Pose2 p = c_->TruePose(d_.get());
+    EXPECT_NEAR(p.x, x, 0.01);
+    EXPECT_NEAR(p.y, y, 0.01);
+    EXPECT_NEAR(std::remainder(p.yaw - yaw, 2 * M_PI), 0.0, 1 * kDeg);
+  }
+  void ExpectStanceFeetFirm(const Monitor& monitor) {
+    EXPECT_LT(monitor.slide(), 1e-3);
+    EXPECT_LT(monitor.twist(), 1 * kDeg);
+    EXPECT_EQ(monitor.tilted_ticks(), 0);
+    EXPECT_LT(monitor.sink(), 2e-3);
+  }
+  void ExpectNoCollisions() {
+    for (const Collision& c : c_->collisions()) {
+      ADD_FAILURE() << "collision at tick " << c.tick << ": " << c.robot_name << " with " << c.world_name
+                    << ", " << c.depth * 1000 << " mm";
+    }
+  }
+  ModelPtr m_;
+  DataPtr d_;
+  std::unique_ptr<Controller> c_;
+};
+
+TEST_F(ControllerTest, WalksOneMetreStraight) {
+  Load("");
+  c_->Walk(1.0, 0, 0);
+  const Monitor monitor = Run();
+  ExpectTruePose(1.0, 0, 0);
+  ExpectStanceFeetFirm(monitor);
+  EXPECT_LT(monitor.camera_range(), 0.02);
+  ExpectNoCollisions();
+  EXPECT_EQ(c_->steps(), 2 * 13);  // 13 strides of 7.7 cm
+  EXPECT_NEAR(c_->believed_pose().x, 1.0, 1e-9);
+  RecordProperty("camera_height_range_mm", std::to_string(monitor.camera_range() * 1000));
+}
+
+TEST_F(ControllerTest, SideStepsHalfAMetre) {
+  Load("");
+  c_->Walk(0, 0.5, 0);
+  Monitor monitor = Run();
+  ExpectTruePose(0, 0.5, 0);
+  c_->Walk(0, -0.5, 0);
+  monitor = Run();
+  ExpectTruePose(0, 0, 0);
+  ExpectStanceFeetFirm(monitor);
+  EXPECT_LT(monitor.camera_range(), 0.02);
+  ExpectNoCollisions();
+}
+
+TEST_F(ControllerTest, TurnsNinetyDegreesOnTheSpot) {
+  Load("");
+  c_->Walk(0, 0, M_PI / 2);
+  Monitor monitor = Run();
+  ExpectTruePose(0, 0, M_PI / 2);
+  ExpectStanceFeetFirm(monitor);
+  c_->Walk(0, 0, -M_PI / 2);
+  monitor = Run();
+  ExpectTruePose(0, 0, 0);
+  ExpectStanceFeetFirm(monitor);
+  EXPECT_LT(monitor.camera_range(), 0.02);
+  ExpectNoCollisions();
+}
+
+TEST_F(ControllerTest, WalksACombinedDisplacement) {
+  Load("");
+  c_->Walk(0.4, -0.2, 60 * kDeg);
+  const Monitor monitor = Run();
+  ExpectTruePose(0.4, -0.2, 60 * kDeg);
+  ExpectStanceFeetFirm(monitor);
+  EXPECT_NEAR(c_->believed_pose().x, 0.4, 1e-9);
+  EXPECT_NEAR(c_->believed_pose().y, -0.2, 1e-9);
+  EXPECT_NEAR(c_->believed_pose().yaw, 60 * kDeg, 1e-9);
+}
+
+TEST_F(ControllerTest, OdometryDriftsFromTheTruthWithSeededNoise) {
+  ControllerParams params;
+  params.odometry_noise_xy = 0.005;
+  params.odometry_noise_yaw = 1 * kDeg;
+  params.seed = 42;
+  Load("", params);
+  c_->Walk(1.0, 0, 0);
+  Run();
+  const Pose2 truth = c_->TruePose(d_.get());
+  // belief integrates the commands; the truth went elsewhere
+  EXPECT_NEAR(c_->believed_pose().x, 1.0, 1e-9);
+  EXPECT_NEAR(c_->believed_pose().y, 0.0, 1e-9);
+  const double drift = std::hypot(truth.x - 1.0, truth.y);
+  EXPECT_GT(drift, 0.005);
+  EXPECT_LT(drift, 0.3);
+  // the same seed drifts the same way
+  c_->Reset({0, 0, 0}, 0.0, m_.get(), d_.get());
+  c_->Walk(1.0, 0, 0);
+  Run();
+  EXPECT_DOUBLE_EQ(c_->TruePose(d_.get()).x, truth.x);
+  EXPECT_DOUBLE_EQ(c_->TruePose(d_.get()).y, truth.y);
+}
+
+// treads as on the course: 3 cm, 6 cm, 3 cm, each a box from the floor up
+const char* kStairs = R"(
+    <geom name="tread_1" type="box" pos="0.425 0 0.015" size="0.125 0.5 0.015"/>
+    <geom name="tread_2" type="box" pos="0.725 0 0.03" size="0.175 0.5 0.03"/>
+    <geom name="tread_3" type="box" pos="1.025 0 0.015" size="0.125 0.5 0.015"/>)";
+
+double StairsSurface(double x, double) {
+  if (x >= 0.3 && x < 0.55) return 0.03;
+  if (x >= 0.55 && x < 0.9) return 0.06;
+  if (x >= 0.9 && x < 1.15) return 0.03;
+  return 0.0;
+}
+
+TEST_F(ControllerTest, ClimbsUpAndDownTreadsOfThreeAndSixCentimetres) {
+  Load(kStairs);
+  // toes 2 cm before each riser, then one stride onto the tread (heights from perception)
+  c_->Walk(0.225, 0, 0);    // sole centres at 0.225, toes at 0.28
+  c_->StepOnto(0.155, 0.03);  // onto tread 1 at 0.38
+  c_->Walk(0.095, 0, 0);    // 0.475, toes at 0.53
+  c_->StepOnto(0.16, 0.03);   // onto tread 2 at 0.635
+  c_->Walk(0.19, 0, 0);     // 0.825, toes 2 cm before its end
+  c_->StepOnto(0.155, -0.03);  // down onto tread 3 at 0.98
+  c_->Walk(0.095, 0, 0);    // 1.075
+  c_->StepOnto(0.155, -0.03);  // down to the floor at 1.23
+  const Monitor monitor = Run(StairsSurface);
+  ExpectTruePose(1.23, 0, 0);
+  ExpectStanceFeetFirm(monitor);
+  ExpectNoCollisions();
+  const double z = RobotFrameInWorld(c_->humanoid(), d_.get()).translation().z();
+  EXPECT_NEAR(z, 0.0, 1e-3);
+}
+
+TEST_F(ControllerTest, StandsOnATreadAtItsHeight) {
+  Load(kStairs);
+  c_->Walk(0.225, 0, 0);
+  c_->StepOnto(0.155, 0.03);
+  c_->Walk(0.095, 0, 0);
+  c_->StepOnto(0.16, 0.03);
+  Run(StairsSurface);
+  EXPECT_NEAR(RobotFrameInWorld(c_->humanoid(), d_.get()).translation().z(), 0.06, 1e-3);
+  // standing height is measured from the tread
+  EXPECT_NEAR(RobotVerticalExtent(c_->humanoid(), m_.get(), d_.get())[1], 0.06 + 0.58, 0.01);
+}
+
+TEST_F(ControllerTest, RejectsATreadTooHighOrTooFar) {
+  Load("");
+  EXPECT_THROW(c_->StepOnto(0.1, 0.08), std::invalid_argument);
+  EXPECT_THROW(c_->StepOnto(0.3, 0.03), std::invalid_argument);
+  EXPECT_THROW(c_->Crawl(0.1, 0), std::logic_error);
+}
+
+// a table with its underside at 0.35 m: top 3 cm thick, legs outside the robot's way
+const char* kTable = R"(
+    <body name="desk">
+      <geom name="desk_top" type="box" pos="0.85 0 0.365" size="0.3 0.5 0.015"/>
+      <geom name="desk_leg_1" type="box" pos="0.57 0.47 0.175" size="0.02 0.02 0.175"/>
+      <geom name="desk_leg_2" type="box" pos="0.57 -0.47 0.175" size="0.02 0.02 0.175"/>
+      <geom name="desk_leg_3" type="box" pos="1.13 0.47 0.175" size="0.02 0.02 0.175"/>
+      <geom name="desk_leg_4" type="box" pos="1.13 -0.47 0.175" size="0.02 0.02 0.175"/>
+    </body>)";
+
+TEST_F(ControllerTest, CrawlsUnderATableWithItsUndersideAt35Centimetres) {
+  Load(kTable);
+  c_->GetDown();
+  c_->Crawl(1.26, 0);
+  Monitor monitor(*c_, d_.get(), Flat);
+  double top = 0;
+  int crawl_ticks = 0;
+  c_->RunUntilIdle(m_.get(), d_.get(), [&](int tick) {
+    monitor(tick);
+    if (c_->mode() == Mode::kCrawling) {
+      top = std::max(top, RobotVerticalExtent(c_->humanoid(), m_.get(), d_.get())[1]);
+      ++crawl_ticks;
+    }
+  });
+  EXPECT_GT(crawl_ticks, 0);
+  EXPECT_LT(top, 0.30);
+  EXPECT_LT(monitor.sink(), 5e-3);
+  c_->GetUp();
+  Run();
+  EXPECT_EQ(c_->mode(), Mode::kStanding);
+  ExpectTruePose(1.26, 0, 0);
+  ExpectNoCollisions();
+  RecordProperty("crawl_height_m", std::to_string(top));
+}
+
+TEST_F(ControllerTest, CrawlTurnsAndKeepsItsBelief) {
+  Load("");
+  c_->GetDown();
+  c_->Crawl(0.2, 45 * kDeg);
+  c_->GetUp();
+  Run();
+  const Pose2 believed = c_->believed_pose();
+  const Pose2 truth = c_->TruePose(d_.get());
+  EXPECT_NEAR(truth.x, believed.x, 0.01);
+  EXPECT_NEAR(truth.y, believed.y, 0.01);
+  EXPECT_NEAR(std::remainder(truth.yaw - believed.yaw, 2 * M_PI), 0.0, 1 * kDeg);
+  EXPECT_NEAR(believed.yaw, 45 * kDeg, 1e-9);
+  ExpectNoCollisions();
+}
+
+// two blocks 0.22 m apart across the way: narrower than the shoulders (0.26 m with the arms),
+// wider than the robot's depth. They are 0.5 m tall: below the hands (0.22 m) the robot is only
+// 0.16 m wide and would pass a 0.22 m gap front on.
+const char* kGap = R"(
+    <geom name="block_left" type="box" pos="0.6 0.31 0.25" size="0.1 0.2 0.25"/>
+    <geom name="block_right" type="box" pos="0.6 -0.31 0.25" size="0.1 0.2 0.25"/>)";
+
+TEST_F(ControllerTest, SideStepsThroughAGapOf22Centimetres) {
+  Load(kGap);
+  c_->Walk(0, 0, M_PI / 2);
+  c_->Walk(0, -1.2, 0);  // facing +y, the robot's right is +x
+  c_->Walk(0, 0, -M_PI / 2);
+  const Monitor monitor = Run();
+  ExpectTruePose(1.2, 0, 0);
+  ExpectStanceFeetFirm(monitor);
+  ExpectNoCollisions();
+}
+
+TEST_F(ControllerTest, NamesTheGeomsOfACollision) {
+  Load(kGap);
+  c_->Walk(1.2, 0, 0);  // front on, the shoulders do not fit
+  Run();
+  ASSERT_FALSE(c_->collisions().empty());
+  bool arm_hit_block = false;
+  for (const Collision& c : c_->collisions()) {
+    EXPECT_GT(c.depth, 0.005);
+    EXPECT_EQ(c.robot_name.rfind("robot_", 0), 0u);
+    arm_hit_block = arm_hit_block || (c.robot_name.find("arm") != std::string::npos &&
+                                      c.world_name.rfind("block_", 0) == 0);
+  }
+  EXPECT_TRUE(arm_hit_block);
+}
+
+TEST_F(ControllerTest, LooksAroundAtTheFloorNearAndAhead) {
+  Load("");
+  const std::vector<HeadAngles> views = LookAroundSweep();
+  ASSERT_GE(views.size(), 6u);
+  double nearest = 1e9, farthest = 0, left = 0, right = 0;
+  for (const HeadAngles& view : views) {
+    c_->MoveHead(view);
+    Run();
+    const Eigen::Isometry3d X_RC = HeadCameraPose(c_->humanoid(), d_.get(), Eye::kLeft);
+    EXPECT_NEAR(d_->qpos[c_->humanoid().joint_qpos(kNeckPan)], view.pan, 1e-9);
+    // where the optical axis meets the floor, in the robot frame
+    const Eigen::Vector3d axis = X_RC.linear().col(2);
+    ASSERT_LT(axis.z(), 0);
+    const Eigen::Vector3d hit = X_RC.translation() - X_RC.translation().z() / axis.z() * axis;
+    nearest = std::min(nearest, hit.head<2>().norm());
+    farthest = std::max(farthest, hit.head<2>().norm());
+    left = std::max(left, hit.y());
+    right = std::min(right, hit.y());
+  }
+  EXPECT_LT(nearest, 0.35);
+  EXPECT_GT(farthest, 0.8);
+  EXPECT_GT(left, 0.2);
+  EXPECT_LT(right, -0.2);
+  EXPECT_NEAR(views.back().pan, 0.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace fognav::sim
