@@ -1,15 +1,27 @@
 // Environment maps of the paper's Section 5: 3D occupancy grid, floor height map and the
 // Floor and Obstacle Grid (FOG). All maps live in the grid frame (the odometry frame).
+//
+// One perception cycle, as the mission runner calls it:
+//   X_GC = odometry robot pose (grid frame) * head kinematic pose (robot frame);
+//   MapInput in{robot_G, X_GC.translation(),
+//               LabelPoints(label_params, points_C, planes, X_GC, body_boxes_G)};
+//   UpdateMaps(map_params, in, &state);
+//   Fog fog = ComputeFog(map_params, state);
+//   FogScore s = ScoreFog(fog, GroundTruthFog(solids_G, fog.window, map_params.fog));
 #ifndef FOGNAV_PERCEPTION_MAPPING_H_
 #define FOGNAV_PERCEPTION_MAPPING_H_
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
+#include "perception/segmentation.h"
 #include "perception/types.h"
 
 namespace fognav::perception {
@@ -60,6 +72,224 @@ struct Fog {
   CellType TypeAt(int ix, int iy) const { return type[size_t(window.Index(ix, iy))]; }
   float HeightAt(int ix, int iy) const { return height[size_t(window.Index(ix, iy))]; }
 };
+
+// ---------------------------------------------------------------------------------------------
+// Labelled points (paper Section 5 intro and 5.1).
+
+// How segmented range data becomes labelled points in the grid frame.
+struct LabelParams {
+  // A plane is a floor candidate if its upward normal is within this angle of grid +z.
+  double max_tilt_deg = 10.0;
+  // ... and if its points in the grid frame extend at least a sole along both principal
+  // directions (extent = sqrt(12 * variance), exact for a uniformly covered rectangle). The
+  // same rule defines floor candidates in GroundTruthFog; 0 disables it.
+  double min_floor_length = 0.10;
+  double min_floor_width = 0.06;
+  // Self-filter: points inside a body box grown by this margin (metres) are dropped.
+  double self_filter_margin = 0.02;
+  // Points farther than this from the camera (metres) are dropped.
+  double max_range = std::numeric_limits<double>::infinity();
+};
+
+// A range point in the grid frame with the height h of the horizontal plane it belongs to, or
+// h = -infinity if it is not on a floor candidate (the paper's (x_i^G, y_i^G, z_i^G, h_i^G)).
+struct LabelledPoint {
+  Eigen::Vector3f p_G = Eigen::Vector3f::Zero();
+  float h = -std::numeric_limits<float>::infinity();
+};
+
+// Transforms the valid points of `points_C` (camera frame) into the grid frame with the camera
+// pose X_GC (odometry robot pose composed with the head's kinematic pose; the caller computes
+// it), labels each with the height of its floor-candidate plane (mean z of the plane's points in
+// the grid frame) or -infinity, and drops NaN points, points beyond max_range and points inside
+// the robot's own body `body_G` (boxes in the grid frame from the robot's kinematic pose).
+// `planes.labels` must have the size of `points_C`; label -1 or an empty label image means no
+// plane. Plane normals may point either way; only their axis is used.
+std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
+                                       const PlaneSet& planes, const Eigen::Isometry3d& X_GC,
+                                       const std::vector<OrientedBox>& body_G);
+
+// ---------------------------------------------------------------------------------------------
+// Map parameters.
+
+// 3D occupancy grid (eq. 15, 18). The window is centred on the robot in x and y and fixed in z.
+struct OccupancyParams {
+  int size_x = 100;          // cells along x (paper: 100)
+  int size_y = 100;          // cells along y (paper: 100)
+  int size_z = 16;           // layers (paper: 16)
+  double resolution = 0.04;  // cell side in metres (paper: 4 cm)
+  // Bottom of layer 0 in the grid frame. The default puts the floor (z = 0) in the middle of
+  // layer 0 so that floor points do not straddle two layers; layers span [-0.02, 0.62).
+  double z_min = -0.02;
+  // Sensor model of eq. (18), as the inverse model P(c | p) (the Bayes update of eq. 18 with
+  // P(p|c) / P(p|!c) = p / (1 - p)). Kept as log-odds internally, clamped to [p_min, p_max].
+  double p_hit = 0.7;   // for the cell holding the end point of a ray
+  double p_miss = 0.4;  // for every other cell the ray crosses
+  double p_min = 0.12;
+  double p_max = 0.97;
+  // Trace one ray per end cell and frame (the first point's; OctoMap's "discretize"): rays to
+  // points in one cell cross nearly the same cells, and near the camera dozens of points share a
+  // cell. Every point still marks its end cell occupied.
+  bool one_ray_per_end_cell = true;
+  // P_occ of eq. (19, 22, 23): a cell is occupied if its probability exceeds this.
+  double p_occ = 0.6;
+};
+
+// Floor height map (eq. 16, 19-21).
+struct FloorParams {
+  double gate = 0.01;       // epsilon of eq. (21), metres
+  double smoothing = 0.8;   // nu of eq. (21)
+  // Eq. (19, 20) read OG(x, y, h) as the highest probability of the layers that
+  // [h - verify_tolerance, h + verify_tolerance] touches, so a floor lying on a layer boundary
+  // is verified by either layer.
+  double verify_tolerance = 0.01;
+};
+
+// FOG classification (eq. 22-25, algorithm classify). Defaults are QRIO's (Section 6).
+struct FogParams {
+  double h_floor = 0.015;  // largest floor change walked on ordinarily, metres
+  double h_stairs = 0.05;  // highest step, metres
+  double h_tunnel = 0.30;  // lowest ceiling to crawl under, metres
+  double h_robot = 0.58;   // standing height, metres
+  int neighbourhood_radius = 1;  // U(x, y) of eq. (24): (2r+1)^2 cells
+  // Eq. (22, 23) read "z > h_f" for a layer as "layer bottom >= h_f + obstacle_margin", so the
+  // layer holding the floor itself never counts as an obstacle. In GroundTruthFog: a solid counts
+  // above the floor where its top exceeds h_f + obstacle_margin.
+  double obstacle_margin = 0.02;
+  // A vertical face on a cell boundary (the riser of a step) leaves points in the lower
+  // neighbour's column. If set, occupied layers of a cell with a floor count as obstacles only
+  // above the highest floor in U(x, y) + obstacle_margin; a higher neighbour then makes the cell
+  // at least stairs or border through eq. (24) anyway.
+  bool ignore_risers = true;
+  // Ground truth only: floor candidates are upward-facing horizontal box tops no higher than
+  // this (the standing camera height) and at least a sole large (LabelParams' sizes).
+  double camera_height = 0.50;
+  double min_floor_length = 0.10;
+  double min_floor_width = 0.06;
+  int truth_samples = 4;  // ground truth samples truth_samples^2 points per cell
+};
+
+struct MapParams {
+  OccupancyParams grid;
+  FloorParams floor;
+  FogParams fog;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Map state and update.
+
+// The accumulated maps. Default-constructed empty; the first UpdateMaps sizes and centres it.
+// Memory with default parameters: 160k cells * (4 + 1) bytes for the grid, 40 kB for the floor
+// map, plus a same-sized scratch buffer for scrolling: about 1.5 MB.
+struct MapState {
+  GridWindow window;       // x-y window shared by the 3D grid and the floor map
+  int size_z = 0;          // layers of the 3D grid
+  double z_min = 0;        // bottom of layer 0, metres
+  // Log-odds of occupancy per 3D cell, index (window.Index(ix, iy)) * size_z + iz; 0 = P 0.5.
+  std::vector<float> log_odds;
+  // Floor height per 2D cell (eq. 16), metres, -infinity where there is no floor information.
+  std::vector<float> floor;
+  // Scratch, reused between updates: per-cell marks of the current frame, scroll buffer, floor
+  // heights in layer units.
+  std::vector<uint8_t> marks;
+  std::vector<float> scratch;
+  std::vector<float> floor_local;
+
+  bool Empty() const { return log_odds.empty(); }
+  // Occupancy probability of local cell (ix, iy, iz) (must be inside).
+  double Probability(int ix, int iy, int iz) const;
+  // Occupancy probability at grid-frame point p_G; NaN outside the grid.
+  double ProbabilityAt(const Eigen::Vector3d& p_G) const;
+  // Floor height at grid-frame (x, y); -infinity if none or outside the window.
+  float FloorAt(double x, double y) const;
+  // Layer holding height z (may lie outside [0, size_z)).
+  int LayerOf(double z) const;
+  double LayerBottom(int iz) const;
+  // Bytes held by the maps and their scratch buffers.
+  size_t MemoryBytes() const;
+};
+
+// One frame's input to the maps.
+struct MapInput {
+  Pose2 robot_G;            // odometry pose of the robot in the grid frame (centres the window)
+  Eigen::Vector3d p_GC = Eigen::Vector3d::Zero();  // camera origin in the grid frame
+  std::vector<LabelledPoint> points;               // from LabelPoints; NaN points are skipped
+};
+
+// Window of the given size centred on the robot: the robot's cell is (size_x/2, size_y/2).
+GridWindow CenteredWindow(const OccupancyParams& params, const Pose2& robot_G);
+
+// Empties the state and centres it on the robot.
+void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
+
+// Scrolls the maps to the window centred on the robot (whole cells; cells that leave the window
+// are erased, entering ones are unknown). Resets the state if it is empty or sized differently.
+void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
+
+// One perception cycle (Sections 5.1-5.3): scroll to the robot, update the 3D grid by ray
+// tracing from the camera to every point (Amanatides-Woo traversal, rays clipped to the grid;
+// within one frame a cell is updated at most once, as occupied if any ray ends in it, else as
+// free if any ray crosses it), verify the floor map against the grid (eq. 20) and insert the
+// floor points that the grid confirms (eq. 19, 21).
+void UpdateMaps(const MapParams& params, const MapInput& input, MapState* state);
+
+// The FOG of the state's window (eq. 22-25 and algorithm classify). Obstacle heights are the top
+// of the highest occupied layer; other heights are floor heights.
+Fog ComputeFog(const MapParams& params, const MapState& state);
+
+// ---------------------------------------------------------------------------------------------
+// Ground truth and scores.
+
+// The FOG of exact geometry: the paper's classification applied to `solids_G`, boxes in the grid
+// frame. The floor is NOT added: pass it as a box whose top face is at z = 0 (e.g. centre z =
+// -0.005, half height 0.005). Rule per cell: sample truth_samples^2 points at the centres of a
+// regular sub-grid of the cell; at each, the floor is the highest exposed top (no other solid
+// right above it) of a floor candidate (an upward-facing box top within 10 deg of horizontal,
+// no higher than camera_height, at least min_floor_length x min_floor_width). The cell's floor
+// h_f is the highest sample floor (as the floor map keeps the highest floor); obstacle and
+// ceiling heights are the highest top and lowest bottom (clamped to h_f) over all samples of the
+// solid parts whose top exceeds h_f + obstacle_margin; eq. (24) and classify then apply as on the
+// estimated maps.
+Fog GroundTruthFog(const std::vector<OrientedBox>& solids_G, const GridWindow& window,
+                   const FogParams& params);
+
+// Agreement of an estimated FOG with the ground truth, over the cells of the estimate's window
+// that the truth's window also holds.
+struct FogScore {
+  int observed = 0;       // cells whose estimated type is not unknown
+  int correct = 0;        // observed cells whose type matches the truth
+  double accuracy = 0;    // correct / observed (0 if none observed)
+  // confusion[truth][estimate], CellType values as indices, over all common cells.
+  std::array<std::array<int, kNumCellTypes>, kNumCellTypes> confusion{};
+  // |estimated - true| floor height over cells that both call floor or stairs, metres.
+  int height_cells = 0;
+  double height_error_median = 0;
+  double height_error_max = 0;
+};
+FogScore ScoreFog(const Fog& estimate, const Fog& truth);
+
+// ---------------------------------------------------------------------------------------------
+// Pictures and dumps.
+
+// The FOG in the paper's scheme: floor grey by height with a colour bar on the right, stairs
+// brown crosses, border solid brown, tunnel "+", obstacle black with a cross, unknown background;
+// +x to the right, +y up; the robot (position and heading) on top.
+RgbImage DrawFog(const Fog& fog, const Pose2& robot_G, int pixels_per_cell = 6);
+// The floor height map in grey with a colour bar; no floor in the background colour.
+RgbImage DrawFloorMap(const MapState& state, int pixels_per_cell = 6);
+// Side views of the 3D grid: occupied layers projected along y (x-z, top) and along x (y-z,
+// bottom); darker where more cells of the column are occupied.
+RgbImage DrawGridSideViews(const MapState& state, double p_occ, int pixels_per_cell = 6);
+
+// Writes into `dir` (created if needed): fog.png, floor.png, grid_side.png (pictures above);
+// fog_types.png + fog.yaml (ROS map_server: resolution, origin, trinary mode, and a
+// `fognav_types` legend of the grey value of each type: floor 254, stairs 190, tunnel 160,
+// unknown 205, border 40, obstacle 0 — so map_server reads floor free, border and obstacle
+// occupied, the rest unknown); fog_heights.png (16-bit, value = 1000 + height in millimetres,
+// clamped to [1, 65535], 0 where the height is -infinity). Throws std::runtime_error naming the
+// file if one cannot be written.
+void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& state,
+                      const MapParams& params, const Pose2& robot_G);
 
 }  // namespace fognav::perception
 

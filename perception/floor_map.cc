@@ -1,0 +1,54 @@
+// 2.5D floor height map (paper Section 5.3, eq. 19-21).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "perception/internal/map_update.h"
+#include "perception/mapping.h"
+
+namespace fognav::perception::internal {
+
+float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol) {
+  const int lo = std::max(0, state.LayerOf(z - tol));
+  const int hi = std::min(state.size_z - 1, state.LayerOf(z + tol));
+  float best = -std::numeric_limits<float>::infinity();
+  const float* column = state.log_odds.data() + size_t(state.window.Index(ix, iy)) * state.size_z;
+  for (int iz = lo; iz <= hi; ++iz) best = std::max(best, column[iz]);
+  return best;
+}
+
+void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* state) {
+  MapState& s = *state;
+  const float l_occ = LogOdds(params.grid.p_occ);
+  const double tol = params.floor.verify_tolerance;
+  const float gate = float(params.floor.gate);
+  const float nu = float(params.floor.smoothing);
+  constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+  // eq. (20): keep a floor height only while the grid still holds it (P_Floor > P_occ)
+  for (int iy = 0; iy < s.window.size_y; ++iy) {
+    for (int ix = 0; ix < s.window.size_x; ++ix) {
+      float& f = s.floor[size_t(s.window.Index(ix, iy))];
+      if (f != kNegInf && !(ColumnLogOddsNear(s, ix, iy, f, tol) > l_occ)) f = kNegInf;
+    }
+  }
+
+  // eq. (19, 21): insert floor points that the grid confirms
+  const double res = s.window.resolution;
+  for (const LabelledPoint& lp : input.points) {
+    if (!std::isfinite(lp.h) || !lp.p_G.allFinite()) continue;
+    const int ix = int(std::floor(lp.p_G.x() / res)) - s.window.origin_ix;
+    const int iy = int(std::floor(lp.p_G.y() / res)) - s.window.origin_iy;
+    if (!s.window.Contains(ix, iy)) continue;
+    if (!(ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ)) continue;
+    float& f = s.floor[size_t(s.window.Index(ix, iy))];
+    if (lp.h < f - gate) continue;  // a lower surface under the floor already known
+    if (lp.h > f + gate) {
+      f = lp.h;  // a new or higher floor: only the highest is kept
+    } else {
+      f = nu * f + (1.0f - nu) * lp.h;
+    }
+  }
+}
+
+}  // namespace fognav::perception::internal

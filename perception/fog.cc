@@ -1,0 +1,80 @@
+// Floor and Obstacle Grid from the 3D grid and the floor map (paper Section 5.4), and scores.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "perception/internal/map_classify.h"
+#include "perception/internal/map_update.h"
+#include "perception/mapping.h"
+
+namespace fognav::perception {
+
+Fog ComputeFog(const MapParams& params, const MapState& state) {
+  Fog fog(state.window);
+  if (state.Empty()) return fog;
+  const GridWindow& w = state.window;
+  const float l_occ = internal::LogOdds(params.grid.p_occ);
+  const float res = float(w.resolution);
+  std::vector<float> dh, highest;
+  internal::FloorChange(w, state.floor, params.fog.neighbourhood_radius, &dh, &highest);
+
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      internal::CellQuantities q;
+      q.f = state.floor[i];
+      q.dh = dh[i];
+      // eq. (22, 23): highest and lowest occupied layers above the floor
+      const float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
+      const float* column = state.log_odds.data() + i * state.size_z;
+      for (int iz = 0; iz < state.size_z; ++iz) {
+        if (!(column[iz] > l_occ)) continue;
+        const float bottom = float(state.LayerBottom(iz));
+        if (bottom < z_lo) continue;
+        if (q.c == -std::numeric_limits<float>::infinity()) q.c = bottom;
+        q.o = bottom + res;
+      }
+      const CellType t = internal::Classify(params.fog, q);
+      fog.type[i] = t;
+      fog.height[i] = internal::FogHeight(t, q);
+    }
+  }
+  return fog;
+}
+
+FogScore ScoreFog(const Fog& estimate, const Fog& truth) {
+  FogScore score;
+  std::vector<double> errors;
+  const GridWindow& we = estimate.window;
+  const GridWindow& wt = truth.window;
+  auto is_floor = [](CellType t) { return t == CellType::kFloor || t == CellType::kStairs; };
+  for (int iy = 0; iy < we.size_y; ++iy) {
+    for (int ix = 0; ix < we.size_x; ++ix) {
+      const int tx = we.origin_ix + ix - wt.origin_ix;
+      const int ty = we.origin_iy + iy - wt.origin_iy;
+      if (!wt.Contains(tx, ty)) continue;
+      const CellType e = estimate.TypeAt(ix, iy);
+      const CellType t = truth.TypeAt(tx, ty);
+      ++score.confusion[int(t)][int(e)];
+      if (e == CellType::kUnknown) continue;
+      ++score.observed;
+      if (e == t) ++score.correct;
+      const float he = estimate.HeightAt(ix, iy), ht = truth.HeightAt(tx, ty);
+      if (is_floor(e) && is_floor(t) && std::isfinite(he) && std::isfinite(ht)) {
+        errors.push_back(std::abs(double(he) - double(ht)));
+      }
+    }
+  }
+  score.accuracy = score.observed > 0 ? double(score.correct) / score.observed : 0.0;
+  score.height_cells = int(errors.size());
+  if (!errors.empty()) {
+    score.height_error_max = *std::max_element(errors.begin(), errors.end());
+    auto mid = errors.begin() + errors.size() / 2;
+    std::nth_element(errors.begin(), mid, errors.end());
+    score.height_error_median = *mid;
+  }
+  return score;
+}
+
+}  // namespace fognav::perception

@@ -1,0 +1,28 @@
+// Steps of UpdateMaps shared between the mapping source files.
+#ifndef FOGNAV_PERCEPTION_INTERNAL_MAP_UPDATE_H_
+#define FOGNAV_PERCEPTION_INTERNAL_MAP_UPDATE_H_
+
+#include <cmath>
+
+#include "perception/mapping.h"
+
+namespace fognav::perception::internal {
+
+inline float LogOdds(double p) { return float(std::log(p / (1.0 - p))); }
+
+// Ray traces every point of the input into the 3D grid (eq. 18). A crossed cell in a layer
+// touching [F - tol, F + tol] of a known floor height F of its column is left alone when the ray
+// stays above F - tol in it.
+void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, const MapInput& input,
+                     MapState* state);
+
+// Highest occupancy log-odds in column (ix, iy) over the layers touching [z - tol, z + tol];
+// -infinity if none of them lies in the grid.
+float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol);
+
+// Verifies the floor map against the grid (eq. 20), then inserts the floor points (eq. 19, 21).
+void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* state);
+
+}  // namespace fognav::perception::internal
+
+#endif  // FOGNAV_PERCEPTION_INTERNAL_MAP_UPDATE_H_

@@ -1,0 +1,145 @@
+// 3D occupancy grid update by ray tracing (paper Section 5.2, eq. 18).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "perception/internal/map_update.h"
+#include "perception/mapping.h"
+
+namespace fognav::perception::internal {
+namespace {
+
+constexpr uint8_t kMarkFree = 1;
+constexpr uint8_t kMarkHit = 2;
+constexpr uint8_t kMarkTraced = 4;  // a ray to this end cell was traced this frame
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Clips the segment a + t (b - a), t in [0, 1], to the box [0, n) per axis; false if it misses.
+bool ClipToBox(const Eigen::Vector3f& a, const Eigen::Vector3f& d, const Eigen::Vector3f& n,
+               float* t0, float* t1) {
+  float lo = 0.0f, hi = 1.0f;
+  for (int k = 0; k < 3; ++k) {
+    if (std::abs(d[k]) < 1e-12f) {
+      if (a[k] < 0.0f || a[k] >= n[k]) return false;
+      continue;
+    }
+    float ta = (0.0f - a[k]) / d[k];
+    float tb = (n[k] - a[k]) / d[k];
+    if (ta > tb) std::swap(ta, tb);
+    lo = std::max(lo, ta);
+    hi = std::min(hi, tb);
+    if (lo > hi) return false;
+  }
+  *t0 = lo;
+  *t1 = hi;
+  return true;
+}
+
+}  // namespace
+
+void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, const MapInput& input,
+                     MapState* state) {
+  MapState& s = *state;
+  const int nx = s.window.size_x, ny = s.window.size_y, nz = s.size_z;
+  const float inv_res = float(1.0 / s.window.resolution);
+  // local continuous coordinates: cell (ix, iy, iz) is the unit cube at (ix, iy, iz)
+  const Eigen::Vector3d origin(s.window.origin_ix * s.window.resolution,
+                               s.window.origin_iy * s.window.resolution, s.z_min);
+  const Eigen::Vector3f a = ((input.p_GC - origin) * double(inv_res)).cast<float>();
+  const Eigen::Vector3f n_box(static_cast<float>(nx), static_cast<float>(ny), static_cast<float>(nz));
+  const Eigen::Vector3f o_f = origin.cast<float>();
+  uint8_t* marks = s.marks.data();
+  if (!a.allFinite()) return;
+  // known floor heights in layer units
+  std::vector<float>& floor_local = s.floor_local;
+  floor_local.resize(s.floor.size());
+  for (size_t i = 0; i < s.floor.size(); ++i) floor_local[i] = (s.floor[i] - float(s.z_min)) * inv_res;
+  const float tol_local = float(floor_tolerance) * inv_res;
+
+  for (const LabelledPoint& lp : input.points) {
+    if (!lp.p_G.allFinite()) continue;
+    const Eigen::Vector3f b = (lp.p_G - o_f) * inv_res;
+    const Eigen::Vector3f d = b - a;
+    float t0, t1;
+    if (!ClipToBox(a, d, n_box, &t0, &t1)) continue;
+    const bool end_inside = t1 >= 1.0f && b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
+                            b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
+    const Eigen::Vector3f s0 = a + t0 * d;
+    const Eigen::Vector3f e0 = end_inside ? b : Eigen::Vector3f(a + t1 * d);
+    const int ex = std::clamp(int(std::floor(e0.x())), 0, nx - 1);
+    const int ey = std::clamp(int(std::floor(e0.y())), 0, ny - 1);
+    const int ez = std::clamp(int(std::floor(e0.z())), 0, nz - 1);
+
+    // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same cells
+    uint8_t& end_mark = marks[size_t(ey * nx + ex) * nz + ez];
+    if (end_inside) end_mark |= kMarkHit;
+    if (params.one_ray_per_end_cell) {
+      if (end_mark & kMarkTraced) continue;
+      end_mark |= kMarkTraced;
+    }
+
+    // Amanatides-Woo over the x-y columns; within a column the ray spans the layers between its
+    // entry and exit heights, which is the same cell set as the 3D traversal
+    int cx = std::clamp(int(std::floor(s0.x())), 0, nx - 1);
+    int cy = std::clamp(int(std::floor(s0.y())), 0, ny - 1);
+    const int step_x = d.x() > 0.0f ? 1 : -1, step_y = d.y() > 0.0f ? 1 : -1;
+    int rem_x = std::max(0, (ex - cx) * step_x), rem_y = std::max(0, (ey - cy) * step_y);
+    float tx = rem_x > 0 ? (float(cx + (step_x > 0)) - a.x()) / d.x() : kInf;
+    float ty = rem_y > 0 ? (float(cy + (step_y > 0)) - a.y()) / d.y() : kInf;
+    const float dtx = rem_x > 0 ? 1.0f / std::abs(d.x()) : 0.0f;
+    const float dty = rem_y > 0 ? 1.0f / std::abs(d.y()) : 0.0f;
+    const int dcol_x = step_x, dcol_y = step_y * nx;
+    int col = cy * nx + cx;
+    const float az = a.z(), dz = d.z();
+
+    // marks the layers the ray spans in column `col` between ray parameters ta and tb; a layer
+    // touching a known floor F +- tol stays untouched where the ray runs above F - tol in it
+    // (the layer is only partly free then, and the floor in it stays)
+    auto mark_column = [&](float ta, float tb, int hit_layer) {
+      const float za = az + ta * dz, zb = az + tb * dz;
+      const float z_low = std::min(za, zb);
+      const int lo = std::clamp(int(z_low), 0, nz - 1);
+      const int hi = std::clamp(int(std::max(za, zb)), 0, nz - 1);
+      const float f = floor_local[col];
+      uint8_t* column = marks + size_t(col) * nz;
+      for (int iz = lo; iz <= hi; ++iz) {
+        if (iz == hit_layer) {
+          column[iz] |= kMarkHit;
+        } else if (!(float(iz) <= f + tol_local && std::max(z_low, float(iz)) > f - tol_local)) {
+          column[iz] |= kMarkFree;
+        }
+      }
+    };
+    float t_enter = t0;
+    for (int n = rem_x + rem_y; n > 0; --n) {
+      const bool along_x = tx < ty;
+      const float t_exit = along_x ? tx : ty;
+      mark_column(t_enter, t_exit, -1);
+      t_enter = t_exit;
+      // branch-free step: the axis is unpredictable
+      col += along_x ? dcol_x : dcol_y;
+      rem_x -= int(along_x);
+      rem_y -= int(!along_x);
+      const float tx_next = rem_x == 0 ? kInf : tx + dtx;
+      const float ty_next = rem_y == 0 ? kInf : ty + dty;
+      tx = along_x ? tx_next : tx;
+      ty = along_x ? ty : ty_next;
+    }
+    mark_column(t_enter, t1, end_inside ? ez : -1);
+  }
+
+  // eq. (18) in log-odds: l += log(P(p|c) / P(p|!c)), once per cell and frame
+  const float l_hit = LogOdds(params.p_hit), l_miss = LogOdds(params.p_miss);
+  const float l_min = LogOdds(params.p_min), l_max = LogOdds(params.p_max);
+  float* l = s.log_odds.data();
+  const size_t cells = s.log_odds.size();
+  for (size_t i = 0; i < cells; ++i) {
+    const uint8_t m = marks[i];
+    if (m == 0) continue;
+    marks[i] = 0;
+    if (!(m & (kMarkHit | kMarkFree))) continue;
+    l[i] = std::clamp(l[i] + ((m & kMarkHit) ? l_hit : l_miss), l_min, l_max);
+  }
+}
+
+}  // namespace fognav::perception::internal
