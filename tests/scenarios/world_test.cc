@@ -1,0 +1,46 @@
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "scenarios/scenario.h"
+#include "scenarios/views.h"
+
+namespace fognav::scenarios {
+namespace {
+
+TEST(WorldFromScenario, HoldsExactlyTheListedObjects) {
+  Scenario scenario = LoadScenario("scenarios/stairs_and_table.yaml");
+  std::vector<Solid> solids = WorldSolids(scenario);
+  sim::World world(MakeWorldSpec(scenario));
+  const mjModel* m = world.model();
+  const mjData* d = world.data();
+
+  // every geom is the floor, a part of the robot or one of the scenario's solids, once
+  std::set<int> solid_geoms;
+  for (size_t i = 0; i < solids.size(); ++i) {
+    int geom = world.box_geom(i);
+    ASSERT_GE(geom, 0) << solids[i].name;
+    EXPECT_TRUE(solid_geoms.insert(geom).second);
+    EXPECT_EQ(m->geom_type[geom], mjGEOM_BOX);
+    Eigen::Map<const Eigen::Vector3d> p(d->geom_xpos + 3 * geom);
+    Eigen::Map<const Eigen::Vector3d> half(m->geom_size + 3 * geom);
+    EXPECT_TRUE(p.isApprox(solids[i].box.X_FB.translation(), 1e-9)) << solids[i].name;
+    EXPECT_TRUE(half.isApprox(solids[i].box.half_size, 1e-9)) << solids[i].name;
+  }
+  int robot_geoms = 0;
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (g == world.floor_geom()) continue;
+    if (world.IsRobotGeom(g)) {
+      ++robot_geoms;
+      continue;
+    }
+    EXPECT_TRUE(solid_geoms.count(g)) << "unexpected geom " << g;
+  }
+  EXPECT_GT(robot_geoms, 10);
+  EXPECT_EQ(m->geom_type[world.floor_geom()], mjGEOM_PLANE);
+  // 4 walls, 2 blocks, 3 treads, 3 gap blocks, a table top and 4 legs
+  EXPECT_EQ(solids.size(), 17u);
+}
+
+}  // namespace
+}  // namespace fognav::scenarios
