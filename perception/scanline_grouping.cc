@@ -277,6 +277,24 @@ class Grouper {
       if (v + 1 < h) add(i + w);
       if (nc == 0) continue;
 
+      // a candidate must hold the point itself within r_grow of its sigma and, against a region
+      // the point already has, closer in units of sigma; the window RMS then decides (the
+      // window alone favours the plane with the denser points at an edge)
+      const Eigen::Vector3d x = points_.points[size_t(i)].cast<double>();
+      double own_ratio = p_.r_grow;
+      if (own >= 0) {
+        const Region& r = ws_.regions[size_t(own)];
+        own_ratio = std::min(own_ratio, std::abs(x.dot(r.fit.n) - r.fit.dist) / r.sigma);
+      }
+      int kept = 0;
+      for (int k = 0; k < nc; ++k) {
+        const Region& r = ws_.regions[size_t(cands[k])];
+        if (r.fit.ok && std::abs(x.dot(r.fit.n) - r.fit.dist) <= own_ratio * r.sigma)
+          cands[kept++] = cands[k];
+      }
+      nc = kept;
+      if (nc == 0) continue;
+
       // window statistics N, b, A around the point
       Moments win;
       const int v0 = std::max(v - half, 0), v1 = std::min(v + half, h - 1);
@@ -297,21 +315,15 @@ class Grouper {
       win.n = n;
       win.b = Eigen::Vector3d(sx, sy, sz);
       win.A << sxx, sxy, sxz, sxy, syy, syz, sxz, syz, szz;
-      const Eigen::Vector3d x = points_.points[size_t(i)].cast<double>();
 
-      // a candidate must hold the point itself within r_grow of its sigma and, against a region
-      // the point already has, closer in units of sigma; the window RMS then decides (the
-      // window alone favours the plane with the denser points at an edge)
       int best = own;
-      double best_cost = kInf, own_ratio = p_.r_grow;
+      double best_cost = kInf;
       if (own >= 0) {
         const Region& r = ws_.regions[size_t(own)];
         best_cost = Rms(win, r.fit.n, r.fit.dist);
-        own_ratio = std::min(own_ratio, std::abs(x.dot(r.fit.n) - r.fit.dist) / r.sigma);
       }
       for (int k = 0; k < nc; ++k) {
         const Region& r = ws_.regions[size_t(cands[k])];
-        if (!r.fit.ok || std::abs(x.dot(r.fit.n) - r.fit.dist) > own_ratio * r.sigma) continue;
         const double cost = Rms(win, r.fit.n, r.fit.dist);
         if (cost < best_cost) {
           best_cost = cost;
@@ -356,14 +368,13 @@ class Grouper {
       for (int u = 0; u < w; ++u) {
         const int a = lab[v * w + u];
         if (a < 0) continue;
-        if (u + 1 < w) {
-          const int b = lab[v * w + u + 1];
-          if (b >= 0 && b != a) pairs.emplace_back(std::min(a, b), std::max(a, b));
-        }
-        if (v + 1 < h) {
-          const int b = lab[(v + 1) * w + u];
-          if (b >= 0 && b != a) pairs.emplace_back(std::min(a, b), std::max(a, b));
-        }
+        auto add = [&](int b) {
+          if (b < 0 || b == a) return;
+          const std::pair<int, int> pr(std::min(a, b), std::max(a, b));
+          if (pairs.empty() || pairs.back() != pr) pairs.push_back(pr);
+        };
+        if (u + 1 < w) add(lab[v * w + u + 1]);
+        if (v + 1 < h) add(lab[(v + 1) * w + u]);
       }
     }
     std::sort(pairs.begin(), pairs.end());

@@ -78,9 +78,9 @@ int FarthestFromChord(const ScanlineScratch& s, int i0, int i1, double* dist) {
 
 class RowSplitter {
  public:
-  RowSplitter(const SegmentParams& p, int row, const ScanPlane& sp, ScanlineScratch* s,
-              std::vector<LineSegment>* out)
-      : p_(p), row_(row), sp_(sp), s_(*s), out_(*out) {}
+  RowSplitter(const SegmentParams& p, int row, const Eigen::Vector3f* row_points,
+              const ScanPlane& sp, ScanlineScratch* s, std::vector<LineSegment>* out)
+      : p_(p), row_(row), row_points_(row_points), sp_(sp), s_(*s), out_(*out) {}
 
   // rd-split: fit, count same-side runs, accept or split at the farthest point
   void RdSplit(int i0, int i1) {
@@ -88,10 +88,20 @@ class RowSplitter {
     if (n < p_.n_min) return;
     const Moments m = RangeMoments(s_, i0, i1);
     const Line2 line = FitLine(m, sp_);
-    for (int i = i0; i <= i1; ++i)
-      s_.r[size_t(i)] = line.na * (s_.a[size_t(i)] - line.ma) + line.nc * (s_.c[size_t(i)] - line.mc);
-    const int c = MaxConsecutiveSameSide(&s_.r[size_t(i0)], n, p_.side_tolerance);
-    if (c < p_.c_max || n < 3) {
+    // max-count-consecutive-same-side, stopping as soon as a run reaches C_max
+    const double off = line.na * line.ma + line.nc * line.mc, tol = p_.side_tolerance;
+    // (branch-free: the sides of noisy points are random and would defeat branch prediction)
+    int run = 0, side = 0, longest = 0;
+    for (int i = i0; i <= i1; ++i) {
+      const double r = line.na * s_.a[size_t(i)] + line.nc * s_.c[size_t(i)] - off;
+      const int sd = int(r > tol) - int(r < -tol);
+      run = (run * int(sd == side) + 1) * int(sd != 0);
+      side = sd;
+      longest = std::max(longest, run);
+      if (longest >= p_.c_max) break;
+    }
+    const bool split = longest >= p_.c_max;
+    if (!split || n < 3) {
       Emit(i0, i1, m, line.sigma);
       return;
     }
@@ -124,13 +134,14 @@ class RowSplitter {
     l.e = s_.u[size_t(i1)];
     l.m = m;
     l.sigma = sigma;
-    l.p_first = s_.p[size_t(i0)];
-    l.p_last = s_.p[size_t(i1)];
+    l.p_first = row_points_[l.b].cast<double>();
+    l.p_last = row_points_[l.e].cast<double>();
     out_.push_back(l);
   }
 
   const SegmentParams& p_;
   int row_;
+  const Eigen::Vector3f* row_points_;
   ScanPlane sp_;
   ScanlineScratch& s_;
   std::vector<LineSegment>& out_;
@@ -142,14 +153,8 @@ int MaxConsecutiveSameSide(const double* residuals, int count, double tolerance)
   int best = 0, run = 0, side = 0;
   for (int i = 0; i < count; ++i) {
     const double r = residuals[i];
-    const int s = r > tolerance ? 1 : (r < -tolerance ? -1 : 0);
-    if (s == 0) {
-      run = 0;
-    } else if (s == side) {
-      ++run;
-    } else {
-      run = 1;
-    }
+    const int s = int(r > tolerance) - int(r < -tolerance);
+    run = (run * int(s == side) + 1) * int(s != 0);
     side = s;
     best = std::max(best, run);
   }
@@ -166,10 +171,8 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
   out->valid.assign(size_t(w) * h, 0);
   ScanlineScratch& s = *scratch;
   s.u.resize(size_t(w));
-  s.p.resize(size_t(w));
   s.a.resize(size_t(w));
   s.c.resize(size_t(w));
-  s.r.resize(size_t(w));
   s.prefix.resize(size_t(w) + 1);
 
   for (int v = 0; v < h; ++v) {
@@ -178,15 +181,24 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
     const Eigen::Vector3f* row = &points.points[size_t(v) * w];
     uint8_t* valid = &out->valid[size_t(v) * w];
     int n = 0;
+    ScanPlane sp;  // 2D coordinates: a = x, c = (ty y + z) / k
+    double inv_k = 1;
     std::array<double, 9> sum{};
     s.prefix[0] = sum;
     for (int u = 0; u < w; ++u) {
       const Eigen::Vector3f& q = row[u];
-      if (!(std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()))) continue;
+      if (!q.allFinite()) continue;
       valid[u] = 1;
       const double x = q.x(), y = q.y(), z = q.z();
+      if (n == 0) {
+        // the scan line's plane through the camera centre, from its first point
+        sp.ty = z != 0 ? y / z : 0;
+        sp.k = std::sqrt(1 + sp.ty * sp.ty);
+        inv_k = 1 / sp.k;
+      }
       s.u[size_t(n)] = u;
-      s.p[size_t(n)] = Eigen::Vector3d(x, y, z);
+      s.a[size_t(n)] = x;
+      s.c[size_t(n)] = (sp.ty * y + z) * inv_k;
       sum[0] += x;
       sum[1] += y;
       sum[2] += z;
@@ -200,18 +212,8 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
     }
     if (n < p.n_min) continue;
 
-    // the scan line's plane through the camera centre, and 2D coordinates in it
-    ScanPlane sp;
-    if (std::abs(sum[2]) > 0) sp.ty = sum[1] / sum[2];
-    sp.k = std::sqrt(1 + sp.ty * sp.ty);
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d& q = s.p[size_t(i)];
-      s.a[size_t(i)] = q.x();
-      s.c[size_t(i)] = (sp.ty * q.y() + q.z()) / sp.k;
-    }
-
     // cut into runs at gaps and depth jumps, then split each run into line segments
-    RowSplitter splitter(p, v, sp, &s, &out->lines);
+    RowSplitter splitter(p, v, row, sp, &s, &out->lines);
     int start = 0;
     for (int i = 1; i <= n; ++i) {
       bool cut = i == n;

@@ -39,9 +39,7 @@ struct LineSet {
 // Reusable buffers of one scan line, so that extraction allocates nothing per pixel.
 struct ScanlineScratch {
   std::vector<int> u;
-  std::vector<Eigen::Vector3d> p;
   std::vector<double> a, c;                    // 2D coordinates in the scan line's plane
-  std::vector<double> r;                       // residuals to the fitted line
   std::vector<std::array<double, 9>> prefix;   // running sums x y z xx xy xz yy yz zz
 };
 
