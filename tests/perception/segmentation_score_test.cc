@@ -1,0 +1,132 @@
+// Segmentation scores: Table 2 accuracy, coverage and Hoover et al.'s counts on label images
+// drawn in code.
+#include <gtest/gtest.h>
+
+#include "perception/segmentation.h"
+
+namespace fognav::perception {
+namespace {
+
+// Fills columns [u0, u1) of image with value.
+void Fill(LabelImage* image, int u0, int u1, int value) {
+  for (int v = 0; v < image->height; ++v)
+    for (int u = u0; u < u1; ++u) image->at(u, v) = value;
+}
+
+// Ground truth: three surfaces side by side, 20 columns x 10 rows each, at 1 m.
+struct Truth {
+  LabelImage ids{60, 10, -1};
+  DepthImage depth{60, 10, 1.0f};
+  Truth() {
+    Fill(&ids, 0, 20, 7);
+    Fill(&ids, 20, 40, 3);
+    Fill(&ids, 40, 60, 11);
+  }
+};
+
+TEST(ScoreSegmentation, PerfectSegmentationIsCorrectEverywhere) {
+  const Truth t;
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 20, 0);
+  Fill(&labels, 20, 40, 1);
+  Fill(&labels, 40, 60, 2);
+
+  const SegmentationScore s = ScoreSegmentation(labels, t.ids, t.depth);
+
+  EXPECT_DOUBLE_EQ(s.accuracy, 1.0);
+  EXPECT_DOUBLE_EQ(s.coverage, 1.0);
+  EXPECT_EQ(s.correct, 3);
+  EXPECT_EQ(s.over + s.under + s.missed + s.noise, 0);
+  EXPECT_EQ(s.planes, 3);
+  EXPECT_EQ(s.truth_surfaces, 3);
+}
+
+TEST(ScoreSegmentation, CountsOverAndUnderSegmentation) {
+  const Truth t;
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 10, 0);   // surface 7 in two halves: over-segmented
+  Fill(&labels, 10, 20, 1);
+  Fill(&labels, 20, 60, 2);  // surfaces 3 and 11 in one segment: under-segmented
+
+  const SegmentationScore s = ScoreSegmentation(labels, t.ids, t.depth);
+
+  EXPECT_EQ(s.correct, 0);
+  EXPECT_EQ(s.over, 1);
+  EXPECT_EQ(s.under, 1);
+  EXPECT_EQ(s.missed, 0);
+  EXPECT_EQ(s.noise, 0);
+  // accuracy: 7 -> segment 0 (100/100), 3 and 11 -> segment 2 (200/400 each)
+  EXPECT_NEAR(s.accuracy, (100.0 + 200 + 200) / (100 + 400 + 400), 1e-12);
+  EXPECT_NEAR(s.coverage, (100.0 + 200 + 200) / 600, 1e-12);
+}
+
+TEST(ScoreSegmentation, CountsMissedSurfacesAndNoiseSegments) {
+  const Truth t;
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 20, 0);   // correct
+  Fill(&labels, 20, 25, 1);  // a quarter of surface 3: too small for any instance -> noise
+  // surface 11 left unsegmented: missed
+
+  const SegmentationScore s = ScoreSegmentation(labels, t.ids, t.depth);
+
+  EXPECT_EQ(s.correct, 1);
+  EXPECT_EQ(s.missed, 2);
+  EXPECT_EQ(s.noise, 1);
+  EXPECT_NEAR(s.coverage, (200.0 + 50) / 600, 1e-12);
+}
+
+TEST(ScoreSegmentation, ToleranceDecidesCorrectDetections) {
+  const Truth t;
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 17, 0);  // 85 % of surface 7
+  ScoreParams strict;
+  strict.tolerance = 0.9;
+
+  EXPECT_EQ(ScoreSegmentation(labels, t.ids, t.depth).correct, 1);
+  EXPECT_EQ(ScoreSegmentation(labels, t.ids, t.depth, strict).correct, 0);
+}
+
+TEST(ScoreSegmentation, IgnoresSmallAndDistantSurfaces) {
+  Truth t;
+  for (int v = 0; v < 10; ++v)
+    for (int u = 20; u < 40; ++u) t.depth.at(u, v) = 3.0f;  // surface 3 beyond 2.5 m
+  for (int v = 0; v < 4; ++v)
+    for (int u = 40; u < 50; ++u) t.ids.at(u, v) = 99;  // 40 px: below 50
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 20, 0);
+
+  const SegmentationScore s = ScoreSegmentation(labels, t.ids, t.depth);
+
+  EXPECT_EQ(s.truth_surfaces, 2);  // 7 and the rest of 11
+  EXPECT_EQ(s.correct, 1);
+  EXPECT_EQ(s.missed, 1);
+}
+
+TEST(ScoreSegmentation, CombinesViewsByPixelSums) {
+  const Truth t;
+  LabelImage mixed(60, 10, -1), half(60, 10, -1);
+  Fill(&mixed, 0, 60, 0);
+  Fill(&mixed, 0, 20, 1);
+  Fill(&mixed, 40, 60, 2);
+  Fill(&half, 0, 10, 0);
+  const SegmentationScore a = ScoreSegmentation(mixed, t.ids, t.depth);
+  const SegmentationScore b = ScoreSegmentation(half, t.ids, t.depth);
+
+  const SegmentationScore c = CombineScores({a, b});
+
+  EXPECT_EQ(c.correct, a.correct + b.correct);
+  EXPECT_EQ(c.truth_surfaces, 6);
+  EXPECT_NEAR(c.coverage, double(a.overlap_px + b.overlap_px) / (a.surface_px + b.surface_px),
+              1e-12);
+}
+
+TEST(ScoreSegmentation, EmptyTruthScoresZero) {
+  const LabelImage none(10, 10, -1);
+  const DepthImage depth(10, 10, 1.0f);
+  const SegmentationScore s = ScoreSegmentation(none, none, depth);
+  EXPECT_EQ(s.truth_surfaces, 0);
+  EXPECT_EQ(s.accuracy, 0.0);
+}
+
+}  // namespace
+}  // namespace fognav::perception
