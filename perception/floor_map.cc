@@ -9,8 +9,10 @@
 namespace fognav::perception::internal {
 
 float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol) {
-  const int lo = std::max(0, state.LayerOf(z - tol));
-  const int hi = std::min(state.size_z - 1, state.LayerOf(z + tol));
+  const float inv_res = float(1.0 / state.window.resolution);
+  const float zl = (float(z) - float(state.z_min)) * inv_res, tl = float(tol) * inv_res;
+  const int lo = std::max(0, FastFloor(zl - tl));
+  const int hi = std::min(state.size_z - 1, FastFloor(zl + tl));
   float best = -std::numeric_limits<float>::infinity();
   const float* column = state.log_odds.data() + size_t(state.window.Index(ix, iy)) * state.size_z;
   for (int iz = lo; iz <= hi; ++iz) best = std::max(best, column[iz]);
@@ -34,13 +36,23 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   }
 
   // eq. (19, 21): insert floor points that the grid confirms
-  const double res = s.window.resolution;
+  const float inv_res = float(1.0 / s.window.resolution);
+  int last_ix = -1, last_iy = -1;
+  float last_h = 0;
+  bool last_ok = false;
   for (const LabelledPoint& lp : input.points) {
     if (!std::isfinite(lp.h) || !lp.p_G.allFinite()) continue;
-    const int ix = int(std::floor(lp.p_G.x() / res)) - s.window.origin_ix;
-    const int iy = int(std::floor(lp.p_G.y() / res)) - s.window.origin_iy;
+    const int ix = FastFloor(lp.p_G.x() * inv_res) - s.window.origin_ix;
+    const int iy = FastFloor(lp.p_G.y() * inv_res) - s.window.origin_iy;
     if (!s.window.Contains(ix, iy)) continue;
-    if (!(ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ)) continue;
+    // neighbouring pixels mostly share the cell and the plane: reuse the last check
+    if (ix != last_ix || iy != last_iy || lp.h != last_h) {
+      last_ix = ix;
+      last_iy = iy;
+      last_h = lp.h;
+      last_ok = ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ;
+    }
+    if (!last_ok) continue;
     float& f = s.floor[size_t(s.window.Index(ix, iy))];
     if (lp.h < f - gate) continue;  // a lower surface under the floor already known
     if (lp.h > f + gate) {

@@ -1,5 +1,8 @@
 // Floor and Obstacle Grid from the 3D grid and the floor map (paper Section 5.4), and scores.
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -15,7 +18,13 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   if (state.Empty()) return fog;
   const GridWindow& w = state.window;
   const float l_occ = internal::LogOdds(params.grid.p_occ);
-  const float res = float(w.resolution);
+  const float res = float(w.resolution), inv_res = 1.0f / res;
+  const float z_min = float(state.z_min);
+  const int nz = state.size_z;
+  if (nz > 64) {
+    std::fprintf(stderr, "fognav mapping: ComputeFog supports at most 64 layers, got %d\n", nz);
+    std::abort();
+  }
   std::vector<float> dh, highest;
   internal::FloorChange(w, state.floor, params.fog.neighbourhood_radius, &dh, &highest);
 
@@ -25,15 +34,22 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       internal::CellQuantities q;
       q.f = state.floor[i];
       q.dh = dh[i];
-      // eq. (22, 23): highest and lowest occupied layers above the floor
+      // eq. (22, 23): highest and lowest occupied layers above the floor, from a bit mask of
+      // the occupied layers of the column
       const float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
-      const float* column = state.log_odds.data() + i * state.size_z;
-      for (int iz = 0; iz < state.size_z; ++iz) {
-        if (!(column[iz] > l_occ)) continue;
-        const float bottom = float(state.LayerBottom(iz));
-        if (bottom < z_lo) continue;
-        if (q.c == -std::numeric_limits<float>::infinity()) q.c = bottom;
-        q.o = bottom + res;
+      const float* column = state.log_odds.data() + i * nz;
+      uint64_t occupied = 0;
+      for (int iz = 0; iz < nz; ++iz) occupied |= uint64_t(column[iz] > l_occ) << iz;
+      // layers whose bottom is at or above z_lo
+      const int first = z_lo == -std::numeric_limits<float>::infinity()
+                            ? 0
+                            : std::clamp(-internal::FastFloor(-(z_lo - z_min) * inv_res + 1e-4f),
+                                         0, 64);
+      if (first < 64) occupied &= ~uint64_t(0) << first; else occupied = 0;
+      if (occupied != 0) {
+        const int lowest = __builtin_ctzll(occupied), top = 63 - __builtin_clzll(occupied);
+        q.c = z_min + float(lowest) * res;
+        q.o = z_min + float(top + 1) * res;
       }
       const CellType t = internal::Classify(params.fog, q);
       fog.type[i] = t;

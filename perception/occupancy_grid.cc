@@ -1,6 +1,8 @@
 // 3D occupancy grid update by ray tracing (paper Section 5.2, eq. 18).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "perception/internal/map_update.h"
@@ -35,6 +37,16 @@ bool ClipToBox(const Eigen::Vector3f& a, const Eigen::Vector3f& d, const Eigen::
   return true;
 }
 
+// eq. (18) in log-odds for one cell, then clears its mark.
+inline void ApplyMark(float l_hit, float l_miss, float l_min, float l_max, uint8_t* mark,
+                      float* l) {
+  const uint8_t m = *mark;
+  if (m == 0) return;
+  *mark = 0;
+  if (!(m & (kMarkHit | kMarkFree))) return;
+  *l = std::clamp(*l + ((m & kMarkHit) ? l_hit : l_miss), l_min, l_max);
+}
+
 }  // namespace
 
 void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, const MapInput& input,
@@ -59,29 +71,39 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   for (const LabelledPoint& lp : input.points) {
     if (!lp.p_G.allFinite()) continue;
     const Eigen::Vector3f b = (lp.p_G - o_f) * inv_res;
+    const bool end_inside = b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
+                            b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
+    // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same cells
+    if (end_inside) {
+      uint8_t& end_mark =
+          marks[size_t(FastFloor(b.y()) * nx + FastFloor(b.x())) * nz + FastFloor(b.z())];
+      end_mark |= kMarkHit;
+      if (params.one_ray_per_end_cell) {
+        if (end_mark & kMarkTraced) continue;
+        end_mark |= kMarkTraced;
+      }
+    }
     const Eigen::Vector3f d = b - a;
     float t0, t1;
     if (!ClipToBox(a, d, n_box, &t0, &t1)) continue;
-    const bool end_inside = t1 >= 1.0f && b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
-                            b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
     const Eigen::Vector3f s0 = a + t0 * d;
     const Eigen::Vector3f e0 = end_inside ? b : Eigen::Vector3f(a + t1 * d);
-    const int ex = std::clamp(int(std::floor(e0.x())), 0, nx - 1);
-    const int ey = std::clamp(int(std::floor(e0.y())), 0, ny - 1);
-    const int ez = std::clamp(int(std::floor(e0.z())), 0, nz - 1);
-
-    // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same cells
-    uint8_t& end_mark = marks[size_t(ey * nx + ex) * nz + ez];
-    if (end_inside) end_mark |= kMarkHit;
-    if (params.one_ray_per_end_cell) {
-      if (end_mark & kMarkTraced) continue;
-      end_mark |= kMarkTraced;
+    const int ez = std::clamp(FastFloor(e0.z()), 0, nz - 1);
+    if (!end_inside && params.one_ray_per_end_cell) {
+      // rays leaving the grid: one per exit cell
+      const int ex = std::clamp(FastFloor(e0.x()), 0, nx - 1);
+      const int ey = std::clamp(FastFloor(e0.y()), 0, ny - 1);
+      uint8_t& exit_mark = marks[size_t(ey * nx + ex) * nz + ez];
+      if (exit_mark & kMarkTraced) continue;
+      exit_mark |= kMarkTraced;
     }
+    const int ex = std::clamp(FastFloor(e0.x()), 0, nx - 1);
+    const int ey = std::clamp(FastFloor(e0.y()), 0, ny - 1);
 
     // Amanatides-Woo over the x-y columns; within a column the ray spans the layers between its
     // entry and exit heights, which is the same cell set as the 3D traversal
-    int cx = std::clamp(int(std::floor(s0.x())), 0, nx - 1);
-    int cy = std::clamp(int(std::floor(s0.y())), 0, ny - 1);
+    int cx = std::clamp(FastFloor(s0.x()), 0, nx - 1);
+    int cy = std::clamp(FastFloor(s0.y()), 0, ny - 1);
     const int step_x = d.x() > 0.0f ? 1 : -1, step_y = d.y() > 0.0f ? 1 : -1;
     int rem_x = std::max(0, (ex - cx) * step_x), rem_y = std::max(0, (ey - cy) * step_y);
     float tx = rem_x > 0 ? (float(cx + (step_x > 0)) - a.x()) / d.x() : kInf;
@@ -133,13 +155,14 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   const float l_min = LogOdds(params.p_min), l_max = LogOdds(params.p_max);
   float* l = s.log_odds.data();
   const size_t cells = s.log_odds.size();
-  for (size_t i = 0; i < cells; ++i) {
-    const uint8_t m = marks[i];
-    if (m == 0) continue;
-    marks[i] = 0;
-    if (!(m & (kMarkHit | kMarkFree))) continue;
-    l[i] = std::clamp(l[i] + ((m & kMarkHit) ? l_hit : l_miss), l_min, l_max);
+  size_t i = 0;
+  for (; i + 8 <= cells; i += 8) {
+    uint64_t block;  // skip eight untouched cells at once
+    std::memcpy(&block, marks + i, 8);
+    if (block == 0) continue;
+    for (size_t j = i; j < i + 8; ++j) ApplyMark(l_hit, l_miss, l_min, l_max, &marks[j], &l[j]);
   }
+  for (; i < cells; ++i) ApplyMark(l_hit, l_miss, l_min, l_max, &marks[i], &l[i]);
 }
 
 }  // namespace fognav::perception::internal

@@ -46,25 +46,37 @@ inline float FogHeight(CellType t, const CellQuantities& q) {
 // U(x, y) (-infinity without floor).
 inline void FloorChange(const GridWindow& window, const std::vector<float>& floor, int radius,
                         std::vector<float>* dh, std::vector<float>* highest) {
-  constexpr float kNegInf = -std::numeric_limits<float>::infinity();
-  dh->assign(floor.size(), 0.0f);
-  highest->assign(floor.size(), kNegInf);
-  for (int iy = 0; iy < window.size_y; ++iy) {
-    for (int ix = 0; ix < window.size_x; ++ix) {
-      const float f = floor[size_t(window.Index(ix, iy))];
-      float change = 0.0f, top = kNegInf;
-      for (int jy = std::max(0, iy - radius); jy <= std::min(window.size_y - 1, iy + radius);
-           ++jy) {
-        for (int jx = std::max(0, ix - radius); jx <= std::min(window.size_x - 1, ix + radius);
-             ++jx) {
-          const float g = floor[size_t(window.Index(jx, jy))];
-          if (g == kNegInf) continue;
-          top = std::max(top, g);
-          if (f != kNegInf) change = std::max(change, std::abs(f - g));
-        }
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  const int nx = window.size_x, ny = window.size_y;
+  // separable max and min over U of the known floor heights (unknown is -inf for the max, +inf
+  // for the min)
+  std::vector<float> row_max(floor.size()), row_min(floor.size());
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      float hi = -kInf, lo = kInf;
+      for (int jx = std::max(0, ix - radius); jx <= std::min(nx - 1, ix + radius); ++jx) {
+        const float g = floor[size_t(iy * nx + jx)];
+        hi = std::max(hi, g);
+        lo = std::min(lo, g == -kInf ? kInf : g);
       }
-      (*dh)[size_t(window.Index(ix, iy))] = change;
-      (*highest)[size_t(window.Index(ix, iy))] = top;
+      row_max[size_t(iy * nx + ix)] = hi;
+      row_min[size_t(iy * nx + ix)] = lo;
+    }
+  }
+  dh->assign(floor.size(), 0.0f);
+  highest->assign(floor.size(), -kInf);
+  for (int iy = 0; iy < ny; ++iy) {
+    for (int ix = 0; ix < nx; ++ix) {
+      float hi = -kInf, lo = kInf;
+      for (int jy = std::max(0, iy - radius); jy <= std::min(ny - 1, iy + radius); ++jy) {
+        hi = std::max(hi, row_max[size_t(jy * nx + ix)]);
+        lo = std::min(lo, row_min[size_t(jy * nx + ix)]);
+      }
+      const size_t i = size_t(iy * nx + ix);
+      const float f = floor[i];
+      (*highest)[i] = hi;
+      // eq. (24): max |f - f'| over known f' in U is max(hi - f, f - lo)
+      if (f != -kInf) (*dh)[i] = std::max(hi - f, f - lo);
     }
   }
 }

@@ -8,6 +8,12 @@
 
 namespace fognav::perception::internal {
 
+// floor() without a libm call (x86-64 without SSE4.1 has no rounding instruction).
+inline int FastFloor(float x) {
+  const int i = int(x);
+  return i - int(x < float(i));
+}
+
 inline float LogOdds(double p) { return float(std::log(p / (1.0 - p))); }
 
 // Ray traces every point of the input into the 3D grid (eq. 18). A crossed cell in a layer
