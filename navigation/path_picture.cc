@@ -16,20 +16,23 @@ using perception::Rgb;
 using perception::RgbImage;
 
 void CheckPicture(const perception::GridWindow& window, int px_per_cell, const RgbImage& picture) {
-  if (px_per_cell <= 0 || picture.width != window.size_x * px_per_cell ||
+  if (px_per_cell <= 0 || picture.width < window.size_x * px_per_cell ||
       picture.height != window.size_y * px_per_cell ||
       picture.data.size() != size_t(picture.width) * size_t(picture.height)) {
     std::fprintf(stderr,
-                 "fognav::navigation: map picture is %dx%d, expected %dx%d for %d px per cell\n",
+                 "fognav::navigation: map picture is %dx%d, expected at least %d wide and %d high "
+                 "for %d px per cell\n",
                  picture.width, picture.height, window.size_x * px_per_cell,
                  window.size_y * px_per_cell, px_per_cell);
     std::abort();
   }
 }
 
-// the picture's pixels as an OpenCV image (channel order r, g, b; colours are given that way)
-cv::Mat Wrap(RgbImage* picture) {
-  return cv::Mat(picture->height, picture->width, CV_8UC3, picture->data.data());
+// the map part of the picture's pixels as an OpenCV image, so drawing clips to it (channel
+// order r, g, b; colours are given that way)
+cv::Mat Wrap(const perception::GridWindow& window, int px_per_cell, RgbImage* picture) {
+  const cv::Mat all(picture->height, picture->width, CV_8UC3, picture->data.data());
+  return all(cv::Rect(0, 0, window.size_x * px_per_cell, window.size_y * px_per_cell));
 }
 
 // sub-pixel position of a grid-frame point in the picture
@@ -62,7 +65,7 @@ void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int 
               RgbImage* picture) {
   CheckPicture(window, px_per_cell, *picture);
   if (plan.path.empty()) return;
-  cv::Mat image = Wrap(picture);
+  cv::Mat image = Wrap(window, px_per_cell, picture);
   const int thickness = std::max(1, px_per_cell / 3);
   const int shift = 4;  // sub-pixel bits for smooth lines
   auto fixed = [&](const cv::Point2d& q) {
@@ -97,7 +100,7 @@ void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int 
 void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window, int px_per_cell,
               RgbImage* picture) {
   CheckPicture(window, px_per_cell, *picture);
-  cv::Mat image = Wrap(picture);
+  cv::Mat image = Wrap(window, px_per_cell, picture);
   const cv::Point2d c = PointPixel(window, px_per_cell, goal_G.x(), goal_G.y());
   const int r = std::max(3, 2 * px_per_cell);
   const cv::Point p(int(std::lround(c.x)), int(std::lround(c.y)));

@@ -24,7 +24,7 @@ PlanResult NoPath(NoPathReason reason, int expanded = 0) {
 // open-list entry; the heap keeps the smallest f on top, ties broken toward larger g (deeper)
 struct OpenEntry {
   double f;
-  double g;
+  float g;  // only breaks ties
   int state;
 };
 struct OpenAfter {
@@ -68,7 +68,12 @@ const char* NoPathReasonName(NoPathReason reason) {
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
-  internal::Lattice lattice(fog, goal_G, p);
+  // per-state arrays and the open list are reused between calls on this thread
+  thread_local internal::SearchMemory thread_memory;
+  thread_local std::vector<OpenEntry> thread_open;
+  internal::SearchMemory& memory = thread_memory;
+  std::vector<OpenEntry>& open = thread_open;
+  internal::Lattice lattice(fog, goal_G, p, &memory);
 
   // where the search may start and end
   const std::vector<internal::Seed> seeds = lattice.StartSeeds(start_G, start_posture);
@@ -81,28 +86,25 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   });
   if (!any_seed_connected) return NoPath(NoPathReason::kGoalEnclosed);
 
-  // search state, one entry per lattice state
-  const size_t n = size_t(lattice.NumStates());
-  std::vector<double> g(n, kInf);
-  std::vector<int> parent(n, -1);
-  std::vector<Move> move_in(n, Move::kNone);
-  std::vector<uint8_t> closed(n, 0);
-  std::vector<OpenEntry> open;
-  open.reserve(1 << 14);
-  std::vector<int> seed_of(n, -1);  // index into seeds, for states that are seeds
-
+  // search state: g, parent and move count only where the stamp is of this generation
+  std::vector<uint32_t>& stamp = memory.search_stamp;
+  std::vector<double>& g = memory.g;
+  std::vector<int32_t>& parent = memory.parent;
+  std::vector<Move>& move_in = memory.move;
+  const uint32_t reached = lattice.generation() << 1, closed = reached | 1u;
+  auto g_of = [&](size_t s) { return (stamp[s] & ~1u) == reached ? g[s] : kInf; };
+  open.clear();
   for (size_t i = 0; i < seeds.size(); ++i) {
-    const internal::Seed& s = seeds[i];
-    if (s.cost < g[size_t(s.state)]) {
-      g[size_t(s.state)] = s.cost;
-      seed_of[size_t(s.state)] = int(i);
-      move_in[size_t(s.state)] = s.move;
-      const double h = lattice.Heuristic(s.state);
-      if (h < kInf) {
-        open.push_back({s.cost + h, s.cost, s.state});
-        std::push_heap(open.begin(), open.end(), OpenAfter());
-      }
-    }
+    const internal::Seed& seed = seeds[i];
+    const size_t s = size_t(seed.state);
+    const double h = lattice.Heuristic(seed.state);
+    if (h == kInf || seed.cost >= g_of(s)) continue;
+    stamp[s] = reached;
+    g[s] = seed.cost;
+    parent[s] = -1 - int32_t(i);
+    move_in[s] = seed.move;
+    open.push_back({seed.cost + h, float(seed.cost), seed.state});
+    std::push_heap(open.begin(), open.end(), OpenAfter());
   }
 
   // A*: with a consistent heuristic each state is expanded once, with its optimal g
@@ -116,8 +118,8 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
     open.pop_back();
     if (top.f >= best_total) break;
     const size_t s = size_t(top.state);
-    if (closed[s] || top.g > g[s]) continue;
-    closed[s] = 1;
+    if (stamp[s] == closed) continue;
+    stamp[s] = closed;
     ++expanded;
     const double end = g[s] + lattice.TerminalCost(top.state);
     if (end < best_total) {
@@ -127,24 +129,26 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
     const int count = lattice.Successors(top.state, succ);
     for (int i = 0; i < count; ++i) {
       const size_t t = size_t(succ[i].state);
-      if (closed[t]) continue;
+      if (stamp[t] == closed) continue;
       const double ng = g[s] + succ[i].cost;
-      if (ng >= g[t]) continue;
-      const double h = lattice.Heuristic(succ[i].state);
-      if (h == kInf) continue;
+      if (ng >= g_of(t)) continue;
+      const double f = ng + lattice.Heuristic(succ[i].state);
+      if (f >= best_total) continue;  // also drops states that cannot reach the goal (h = inf)
+      stamp[t] = reached;
       g[t] = ng;
-      parent[t] = top.state;
+      parent[t] = int32_t(s);
       move_in[t] = succ[i].move;
-      seed_of[t] = -1;
-      open.push_back({ng + h, ng, succ[i].state});
+      open.push_back({f, float(ng), succ[i].state});
       std::push_heap(open.begin(), open.end(), OpenAfter());
     }
   }
   if (best_state < 0) return NoPath(NoPathReason::kGoalEnclosed, expanded);
 
-  // walk back from the best end state
+  // walk back from the best end state to its seed
   std::vector<int> chain;
-  for (int s = best_state; s >= 0; s = parent[size_t(s)]) chain.push_back(s);
+  int s = best_state;
+  for (; s >= 0; s = parent[size_t(s)]) chain.push_back(s);
+  const internal::Seed& seed = seeds[size_t(-1 - s)];
   std::reverse(chain.begin(), chain.end());
 
   PlanResult r;
@@ -153,19 +157,18 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   r.reaches_goal = lattice.GoalInWindow();
   r.cost = best_total;
   r.expanded = expanded;
+  r.path.reserve(chain.size() + 1);
   r.path.push_back({start_G, Move::kNone, start_posture});
-  const internal::Seed& seed = seeds[size_t(seed_of[size_t(chain.front())])];
   r.length = seed.length;
   if (seed.move != Move::kNone) {
     r.path.push_back({lattice.PoseOf(chain.front()), seed.move,
                       lattice.PostureOfState(chain.front())});
   }
   for (size_t i = 1; i < chain.size(); ++i) {
-    const int s = chain[i];
-    const perception::Pose2 pose = lattice.PoseOf(s);
+    const perception::Pose2 pose = lattice.PoseOf(chain[i]);
     const perception::Pose2 prev = lattice.PoseOf(chain[i - 1]);
     r.length += std::hypot(pose.x - prev.x, pose.y - prev.y);
-    r.path.push_back({pose, move_in[size_t(s)], lattice.PostureOfState(s)});
+    r.path.push_back({pose, move_in[size_t(chain[i])], lattice.PostureOfState(chain[i])});
   }
   return r;
 }

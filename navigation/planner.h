@@ -141,10 +141,12 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
 // x to the right, y up (row 0 holds the cells of largest iy).
 Eigen::Vector2i CellPixel(const perception::GridWindow& window, int px_per_cell, int ix, int iy);
 
-// Draws the path onto a map picture of the window (size_x * px_per_cell wide, size_y *
-// px_per_cell high, layout as in CellPixel): a polyline coloured by move (walk blue, sidestep
-// magenta, turn cyan, stairs orange, crawl red), a heading tick at each pose, the start as a
-// green square; poses outside the window are clipped. Aborts if the picture size does not match.
+// Draws the path onto a map picture of the window, such as perception::DrawFog's: the map fills
+// the left size_x * px_per_cell columns and all size_y * px_per_cell rows, laid out as in
+// CellPixel (columns further right, e.g. a colour bar, are left alone). The path is a polyline
+// coloured by move (walk blue, sidestep magenta, turn cyan, stairs orange, crawl red) with a
+// heading tick at each pose and the start as a green square; what falls outside the map is
+// clipped. Aborts if the picture is too small or not that high.
 void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int px_per_cell,
               perception::RgbImage* picture);
 

@@ -109,9 +109,27 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
   }
 }
 
+void SearchMemory::Begin(int num_states) {
+  // generations live in the upper 30 bits of the stamps; start over before they wrap
+  if (generation >= (1u << 29)) {
+    generation = 0;
+    std::fill(valid_stamp.begin(), valid_stamp.end(), 0u);
+    std::fill(search_stamp.begin(), search_stamp.end(), 0u);
+  }
+  ++generation;
+  const size_t n = size_t(num_states);
+  if (valid_stamp.size() < n) {
+    valid_stamp.resize(n, 0u);
+    search_stamp.resize(n, 0u);
+    g.resize(n);
+    parent.resize(n);
+    move.resize(n);
+  }
+}
+
 Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
-                 const PlannerParams& p)
-    : fog_(fog), p_(p), goal_G_(goal_G) {
+                 const PlannerParams& p, SearchMemory* memory)
+    : fog_(fog), p_(p), goal_G_(goal_G), memory_(memory ? memory : &own_memory_) {
   const perception::GridWindow& w = fog.window;
   if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
   num_cells_ = w.NumCells();
@@ -165,7 +183,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
 
   ComputePermissions();
   ComputeCellCosts();
-  valid_.assign(size_t(NumStates()), 0);
+  memory_->Begin(NumStates());
+  ComputeTerminalCosts();
   ComputeHeuristic();
 }
 
@@ -273,58 +292,78 @@ bool Lattice::InGoalRegion(int cell) const {
   return (w.CellCenter(ix, iy) - goal_G_).norm() <= p_.goal_tolerance;
 }
 
-void Lattice::ComputeHeuristic() {
-  // exact cost-to-go on a relaxed 2D graph: same cell steps and per-metre costs at the lowest
-  // move factor, no footprint orientation, turns or posture changes free, and a cell open when
-  // it is not certainly blocked for both postures; a lower bound of every 3D path, hence
-  // admissible and consistent
+void Lattice::ComputeTerminalCosts() {
   const perception::GridWindow& w = fog_.window;
-  const size_t n = size_t(num_cells_);
-  std::vector<uint8_t> open(n);
-  for (size_t i = 0; i < n; ++i) {
-    bool any = false;
-    for (int q = 0; q < 2; ++q) {
-      const double in = inner_radius_cells_[q] - kEps;
-      if (!(in > 0 && blocked_d2_[q][i] <= in * in) && ok_[q][i]) any = true;
-    }
-    open[i] = any;
-  }
-  heuristic_.assign(n, kInf);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  terminal_.assign(size_t(num_cells_), kInf);
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const int i = w.Index(ix, iy);
-      if (!open[size_t(i)]) continue;
-      double h = kInf;
       if (goal_in_window_) {
-        if (InGoalRegion(i)) h = 0;
+        if (InGoalRegion(i)) terminal_[size_t(i)] = 0.0;
       } else {
-        h = (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor;
-      }
-      if (h < kInf) {
-        heuristic_[size_t(i)] = h;
-        queue.push({h, i});
+        terminal_[size_t(i)] = (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor;
       }
     }
   }
+}
+
+void Lattice::ComputeHeuristic() {
+  // exact cost-to-go on a relaxed graph of cells x posture: the same cell steps, per-metre
+  // costs at the lowest factor any move of that posture can have there (standing on stairs
+  // costs at least stairs_factor), posture changes at their cost, turns free, no footprint
+  // orientation, and a cell open for a posture unless it is certainly blocked for it. Every 3D
+  // edge maps to a relaxed edge that costs no more, so this is admissible and consistent.
+  const perception::GridWindow& w = fog_.window;
+  const size_t n = size_t(num_cells_);
+  std::vector<uint8_t> open(2 * n);
+  for (size_t i = 0; i < n; ++i) {
+    for (int q = 0; q < 2; ++q) {
+      const double in = inner_radius_cells_[q] - kEps;
+      open[2 * i + size_t(q)] = ok_[q][i] && !(in > 0 && blocked_d2_[q][i] <= in * in);
+    }
+  }
+  const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
+  const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
+  const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
+  heuristic_.assign(2 * n, kInf);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (size_t node = 0; node < 2 * n; ++node) {
+    const double h = terminal_[node / 2];
+    if (open[node] && h < kInf) {
+      heuristic_[node] = h;
+      queue.push({h, int(node)});
+    }
+  }
+  auto relax = [&](int node, double h) {
+    if (h < heuristic_[size_t(node)]) {
+      heuristic_[size_t(node)] = h;
+      queue.push({h, node});
+    }
+  };
   while (!queue.empty()) {
-    const auto [h, i] = queue.top();
+    const auto [h, node] = queue.top();
     queue.pop();
-    if (h > heuristic_[size_t(i)]) continue;
+    if (h > heuristic_[size_t(node)]) continue;
+    const int i = node / 2, q = node % 2;
     const int ix = i % w.size_x, iy = i / w.size_x;
+    if (open[size_t(node ^ 1)]) relax(node ^ 1, h + p_.posture_change_cost);
+    const bool stairs_here = fog_.type[size_t(i)] == CellType::kStairs;
     for (int k = 0; k < kNumHeadings; ++k) {
       const int nx = ix + kSteps[k].dx, ny = iy + kSteps[k].dy;
       if (!w.Contains(nx, ny)) continue;
       const int j = w.Index(nx, ny);
-      if (!open[size_t(j)]) continue;
-      if (std::abs(HeightStep(i, j)) > p_.h_stairs) continue;
-      const double cost =
-          step_length_[k] * (min_factor_ + 0.5 * (cell_cost_[size_t(i)] + cell_cost_[size_t(j)]));
-      if (h + cost < heuristic_[size_t(j)]) {
-        heuristic_[size_t(j)] = h + cost;
-        queue.push({h + cost, j});
+      if (!open[2 * size_t(j) + size_t(q)]) continue;
+      const double dh = std::abs(HeightStep(i, j));
+      if (dh > (q == 0 ? p_.h_stairs : p_.h_floor)) continue;
+      double factor = crawl_factor;
+      if (q == 0) {
+        const bool stairs = stairs_here || dh > p_.h_floor ||
+                            fog_.type[size_t(j)] == CellType::kStairs;
+        factor = stairs ? stairs_factor : upright_factor;
       }
+      relax(2 * j + q, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
+                                                              cell_cost_[size_t(j)])));
     }
   }
 }
@@ -361,9 +400,12 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
 }
 
 bool Lattice::Valid(int s) {
-  uint8_t& v = valid_[size_t(s)];
-  if (v == 0) v = FootprintFits(CellOfState(s), HeadingOfState(s), int(PostureOfState(s))) ? 1 : 2;
-  return v == 1;
+  uint32_t& v = memory_->valid_stamp[size_t(s)];
+  if ((v >> 2) != memory_->generation) {
+    const bool fits = FootprintFits(CellOfState(s), HeadingOfState(s), int(PostureOfState(s)));
+    v = (memory_->generation << 2) | (fits ? 1u : 2u);
+  }
+  return (v & 3u) == 1u;
 }
 
 int Lattice::Successors(int s, Successor* out) {
@@ -425,9 +467,7 @@ int Lattice::Successors(int s, Successor* out) {
 
 double Lattice::TerminalCost(int s) const {
   const int cell = CellOfState(s);
-  if (goal_in_window_) return InGoalRegion(cell) ? 0.0 : kInf;
-  const perception::GridWindow& w = fog_.window;
-  return (w.CellCenter(cell % w.size_x, cell / w.size_x) - goal_G_).norm() * p_.exit_factor;
+  return terminal_[size_t(cell)];
 }
 
 bool Lattice::GoalRegionHasValidState() {

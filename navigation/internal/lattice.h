@@ -49,11 +49,28 @@ inline constexpr double kFarSquared = 1e20;
 void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, int size_y,
                               std::vector<double>* out);
 
+// Per-state scratch arrays reused from query to query so that a search neither allocates nor
+// clears them: an entry counts only if its stamp carries the current generation.
+struct SearchMemory {
+  uint32_t generation = 0;
+  std::vector<uint32_t> valid_stamp;  // generation << 2 | 1 (valid) or 2 (invalid)
+  std::vector<uint32_t> search_stamp;  // generation << 1 (reached) | 1 (closed)
+  std::vector<double> g;
+  std::vector<int32_t> parent;  // a state, or -1 - seed index for seeds
+  std::vector<Move> move;
+  // Starts a query over num_states states: new generation, arrays grown as needed.
+  void Begin(int num_states);
+};
+
 class Lattice {
  public:
-  // Prepares per-cell permissions, costs, footprints and the heuristic for one query. Aborts if
-  // the FOG's arrays do not match its window.
-  Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p);
+  // Prepares per-cell permissions, costs, footprints and the heuristic for one query, using
+  // `memory` (or memory of its own when null) for the per-state arrays. Aborts if the FOG's
+  // arrays do not match its window.
+  Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
+          SearchMemory* memory = nullptr);
+  SearchMemory& memory() { return *memory_; }
+  uint32_t generation() const { return memory_->generation; }
 
   int NumStates() const { return num_cells_ * 2 * kNumHeadings; }
   int StateIndex(int ix, int iy, int heading, Posture posture) const {
@@ -73,7 +90,7 @@ class Lattice {
   double TerminalCost(int s) const;
   // Consistent lower bound on the cost from state s to the end of a path (+infinity when the
   // relaxed problem already shows that none exists).
-  double Heuristic(int s) const { return heuristic_[size_t(CellOfState(s))]; }
+  double Heuristic(int s) const { return heuristic_[size_t(s / kNumHeadings)]; }
 
   bool GoalInWindow() const { return goal_in_window_; }
   // Whether some valid state lies in the goal region (only meaningful with the goal in window).
@@ -93,6 +110,7 @@ class Lattice {
   bool InGoalRegion(int cell) const;
   void ComputePermissions();
   void ComputeCellCosts();
+  void ComputeTerminalCosts();
   void ComputeHeuristic();
   double HeightStep(int from_cell, int to_cell) const;
 
@@ -110,8 +128,10 @@ class Lattice {
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
   int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
-  std::vector<double> heuristic_;          // per cell
-  std::vector<uint8_t> valid_;             // per state: 0 unknown, 1 valid, 2 invalid
+  std::vector<double> terminal_;           // per cell: TerminalCost
+  std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
+  SearchMemory own_memory_;
+  SearchMemory* memory_ = nullptr;
   double step_length_[kNumHeadings] = {};  // metres
   double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
 };

@@ -1,0 +1,69 @@
+// Planning on a 100x100 FOG like the paper's course (walls, an 8 and a 20 cm block, stairs of
+// 3/6/3 cm, a 0.22 m gap, a table): A* over 16 headings and two postures.
+#include <algorithm>
+#include <chrono>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "navigation/internal/test_worlds.h"
+#include "navigation/planner.h"
+
+namespace fognav::navigation {
+namespace {
+
+// the whole course from its start to the goal behind the table
+void BM_PlanningCourse(benchmark::State& bench) {
+  const internal::Course course = internal::PaperCourse();
+  const PlannerParams params;
+  int64_t expanded = 0;
+  size_t poses = 0;
+  for (auto _ : bench) {
+    const PlanResult r = Plan(course.fog, course.start_G, course.goal_G, params);
+    if (r.status != PlanStatus::kOk) bench.SkipWithError("no path on the course");
+    expanded += r.expanded;
+    poses = r.path.size();
+    benchmark::DoNotOptimize(r.path.data());
+  }
+  bench.counters["expanded"] = double(expanded) / double(std::max<int64_t>(1, bench.iterations()));
+  bench.counters["poses"] = double(poses);
+}
+BENCHMARK(BM_PlanningCourse)->Name("Planning/course")->Unit(benchmark::kMillisecond);
+
+// re-planning as a mission does, from poses along the course (one per iteration, in turn), with
+// the slowest single plan as a counter
+void BM_PlanningCourseReplan(benchmark::State& bench) {
+  const internal::Course course = internal::PaperCourse();
+  const PlannerParams params;
+  struct Start {
+    perception::Pose2 pose;
+    Posture posture;
+  };
+  const std::vector<Start> starts = {
+      {{0.0, 0.0, 0.0}, Posture::kUpright},    {{0.3, 0.4, 0.8}, Posture::kUpright},
+      {{0.8, 0.0, 0.0}, Posture::kUpright},    {{1.1, -0.3, 0.0}, Posture::kUpright},
+      {{1.4, 0.2, 0.0}, Posture::kUpright},    {{1.9, 0.0, -0.5}, Posture::kUpright},
+      {{2.05, 0.0, 1.57}, Posture::kUpright},  {{2.5, 0.0, 0.0}, Posture::kUpright},
+      {{2.7, 0.0, 0.0}, Posture::kCrawling},   {{3.1, 0.0, 0.0}, Posture::kCrawling},
+      {{0.0, 0.0, 3.14}, Posture::kUpright},   {{3.6, 0.3, 3.14}, Posture::kUpright},
+  };
+  // the last start plans back to the course start: the longest search
+  size_t k = 0;
+  double worst_ms = 0;
+  for (auto _ : bench) {
+    const Start& s = starts[k];
+    const Eigen::Vector2d goal = k + 1 == starts.size() ? Eigen::Vector2d(0.0, 0.0) : course.goal_G;
+    k = (k + 1) % starts.size();
+    const auto t0 = std::chrono::steady_clock::now();
+    const PlanResult r = Plan(course.fog, s.pose, goal, params, s.posture);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (r.status != PlanStatus::kOk) bench.SkipWithError("no path from a course pose");
+    worst_ms = std::max(worst_ms, std::chrono::duration<double, std::milli>(t1 - t0).count());
+    benchmark::DoNotOptimize(r.path.data());
+  }
+  bench.counters["worst_ms"] = worst_ms;
+}
+BENCHMARK(BM_PlanningCourseReplan)->Name("Planning/course_replan")->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace fognav::navigation
