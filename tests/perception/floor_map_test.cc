@@ -1,0 +1,115 @@
+// Floor height map: verification (eq. 19, 20) and update (eq. 21).
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "perception/mapping.h"
+
+namespace fognav::perception {
+namespace {
+
+constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+// Cell x in [0.40, 0.44), y in [0, 0.04): a 3 x 3 patch of points at height z labelled h.
+std::vector<LabelledPoint> Patch(float z, float h) {
+  std::vector<LabelledPoint> points;
+  for (float x : {0.412f, 0.42f, 0.428f}) {
+    for (float y : {0.012f, 0.02f, 0.028f}) points.push_back({{x, y, z}, h});
+  }
+  return points;
+}
+
+MapInput Frame(const Eigen::Vector3d& camera, std::vector<LabelledPoint> points) {
+  MapInput in;
+  in.p_GC = camera;
+  in.points = std::move(points);
+  return in;
+}
+
+const Eigen::Vector3d kAbove(0.42, 0.02, 0.6);  // camera right above the cell
+
+TEST(FloorMap, Eq19FloorIsInsertedOnlyOnceTheGridHoldsIt) {
+  MapParams params;
+  params.grid.p_occ = 0.8;  // one hit (0.7) is not enough, two (0.845) are
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  EXPECT_EQ(state.FloorAt(0.42, 0.02), kNegInf);
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+}
+
+TEST(FloorMap, Eq19OutlierPlaneHeightNotBackedByTheGridIsIgnored) {
+  MapParams params;
+  MapState state;
+  // the points lie at z = 0 but claim a plane at 0.30: the grid holds nothing there
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.30f)), &state);
+  EXPECT_EQ(state.FloorAt(0.42, 0.02), kNegInf);
+}
+
+TEST(FloorMap, Eq21HigherReplacesLowerIsIgnoredCloseIsSmoothed) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.10f, 0.10f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10, 1e-6);
+  // a higher surface by more than the gate replaces the height
+  UpdateMaps(params, Frame(kAbove, Patch(0.20f, 0.20f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.20, 1e-6);
+  // a lower one is ignored (seen from the side, so no ray crosses the floor at 0.20)
+  UpdateMaps(params, Frame({0.02, 0.02, 0.08}, Patch(0.05f, 0.05f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.20, 1e-6);
+  // within the gate: nu * F + (1 - nu) * h, once per point
+  std::vector<LabelledPoint> one = {{{0.42f, 0.02f, 0.205f}, 0.205f}};
+  UpdateMaps(params, Frame(kAbove, one), &state);
+  const double nu = params.floor.smoothing;
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), nu * 0.20 + (1 - nu) * 0.205, 1e-6);
+}
+
+TEST(FloorMap, Eq20FloorIsDroppedWhenRaysPassThroughIt) {
+  MapParams params;
+  MapState state;
+  // a box top at 0.20, then the box is gone and the camera sees the floor through it
+  UpdateMaps(params, Frame(kAbove, Patch(0.20f, 0.20f)), &state);
+  ASSERT_NEAR(state.FloorAt(0.42, 0.02), 0.20, 1e-6);
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.20, 1e-6);  // P = 0.61 still above P_occ
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);  // dropped (eq. 20), then the floor below
+  EXPECT_LT(state.ProbabilityAt({0.42, 0.02, 0.20}), params.grid.p_occ);
+}
+
+TEST(FloorMap, GrazingRaysDoNotEraseAKnownFloor) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  ASSERT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+  // rays just above the floor across the cell to a floor point further on
+  std::vector<LabelledPoint> far = {{{1.0f, 0.02f, 0.0f}, 0.0f}};
+  for (int k = 0; k < 5; ++k) UpdateMaps(params, Frame({0.0, 0.02, 0.012}, far), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+  EXPECT_GT(state.ProbabilityAt({0.42, 0.02, 0.0}), params.grid.p_occ);
+}
+
+TEST(FloorMap, RepeatedNoisyObservationsConverge) {
+  MapParams params;
+  MapState state;
+  std::mt19937 rng(3);
+  std::normal_distribution<float> noise(0.0f, 0.003f);
+  std::vector<double> late;
+  for (int k = 0; k < 60; ++k) {
+    const float h = 0.03f + noise(rng);
+    UpdateMaps(params, Frame(kAbove, {{{0.42f, 0.02f, h}, h}}), &state);
+    if (k >= 40) late.push_back(state.FloorAt(0.42, 0.02));
+  }
+  double mean = 0;
+  for (double f : late) mean += f / late.size();
+  double var = 0;
+  for (double f : late) var += (f - mean) * (f - mean) / late.size();
+  EXPECT_NEAR(mean, 0.03, 0.003);
+  EXPECT_LT(std::sqrt(var), 0.003);  // smoothed below the noise of single readings
+}
+
+}  // namespace
+}  // namespace fognav::perception

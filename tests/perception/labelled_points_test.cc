@@ -1,0 +1,143 @@
+// Labelled points (paper Section 5 intro, 5.1): floor candidates, heights, self-filter.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "perception/internal/map_synthetic.h"
+#include "perception/mapping.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::AlignedBox;
+using internal::LookAt;
+using internal::MakeIntrinsics;
+using internal::RenderBoxes;
+
+const CameraIntrinsics kK = MakeIntrinsics(176, 144, 45.0);
+
+OrientedBox Floor() { return AlignedBox(-3, 3, -3, 3, -0.01, 0.0); }
+
+TEST(LabelPoints, HorizontalPlanesGetTheirHeightInTheGridFrame) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.6, 1.2, -0.3, 0.3, 0.0, 0.03)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {1.0, 0, 0});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  // the grid frame is the world shifted: heights in it are 5 cm more
+  Eigen::Isometry3d X_GW = Eigen::Isometry3d::Identity();
+  X_GW.translation() = Eigen::Vector3d(0.1, -0.2, 0.05);
+  const std::vector<LabelledPoint> points =
+      LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_GW * X_WC, {});
+  int floor = 0, step = 0, other = 0;
+  for (const LabelledPoint& lp : points) {
+    const double z_W = lp.p_G.z() - 0.05;
+    if (std::abs(z_W) < 1e-4) {
+      EXPECT_NEAR(lp.h, 0.05, 1e-5);
+      ++floor;
+    } else if (std::abs(z_W - 0.03) < 1e-4) {
+      EXPECT_NEAR(lp.h, 0.08, 1e-5);
+      ++step;
+    } else {
+      EXPECT_EQ(lp.h, -std::numeric_limits<float>::infinity()) << "riser point at z " << z_W;
+      ++other;
+    }
+  }
+  EXPECT_GT(floor, 1000);
+  EXPECT_GT(step, 1000);
+  EXPECT_GT(other, 10);  // the riser of the step
+}
+
+TEST(LabelPoints, TiltedAndDownwardFacingPlanesAreNotFloor) {
+  // a ramp tilted 20 deg, a plate tilted 5 deg, and a slab seen from below
+  OrientedBox ramp = AlignedBox(0.8, 1.4, -0.8, -0.2, 0.0, 0.02);
+  ramp.X_FB.linear() = Eigen::AngleAxisd(20.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).matrix();
+  OrientedBox plate = AlignedBox(0.8, 1.4, 0.2, 0.8, 0.05, 0.07);
+  plate.X_FB.linear() = Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()).matrix();
+  const OrientedBox slab = AlignedBox(0.8, 1.4, -0.2, 0.2, 0.40, 0.44);
+  const std::vector<OrientedBox> world = {ramp, plate, slab};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.25}, {1.1, 0, 0.2});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  const std::vector<LabelledPoint> points =
+      LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {});
+  int ramp_n = 0, plate_n = 0, plate_floor = 0, slab_n = 0;
+  for (const LabelledPoint& lp : points) {
+    if (lp.p_G.y() < -0.25) {
+      ++ramp_n;
+      EXPECT_EQ(lp.h, -std::numeric_limits<float>::infinity());
+    } else if (lp.p_G.y() > 0.25 && lp.p_G.z() > 0.05) {
+      ++plate_n;
+      plate_floor += std::isfinite(lp.h);
+    } else if (std::abs(lp.p_G.z() - 0.40) < 1e-4) {
+      ++slab_n;
+      EXPECT_EQ(lp.h, -std::numeric_limits<float>::infinity());
+    }
+  }
+  EXPECT_GT(ramp_n, 100);
+  EXPECT_GT(plate_floor, 100);  // its top, within the 10 deg tolerance
+  EXPECT_LT(plate_floor, plate_n);
+  EXPECT_GT(slab_n, 100);
+}
+
+TEST(LabelPoints, PlanesSmallerThanASoleAreNotFloor) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.8, 0.84, -0.2, -0.16, 0.0, 0.10),
+                                          AlignedBox(0.8, 1.0, 0.1, 0.3, 0.0, 0.10)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {0.9, 0, 0});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  const std::vector<LabelledPoint> points =
+      LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {});
+  int post = 0, box = 0;
+  for (const LabelledPoint& lp : points) {
+    if (std::abs(lp.p_G.z() - 0.10) > 1e-4) continue;
+    if (lp.p_G.y() < 0) {
+      ++post;
+      EXPECT_EQ(lp.h, -std::numeric_limits<float>::infinity());
+    } else {
+      ++box;
+      EXPECT_NEAR(lp.h, 0.10, 1e-5);
+    }
+  }
+  EXPECT_GT(post, 5);
+  EXPECT_GT(box, 100);
+}
+
+TEST(LabelPoints, SelfFilterDropsPointsOnTheBody) {
+  const std::vector<OrientedBox> world = {Floor()};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {0.5, 0, 0});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  // a foot on the floor in view, as the robot's kinematic pose gives it
+  OrientedBox foot = AlignedBox(0.40, 0.52, -0.04, 0.04, 0.0, 0.04);
+  foot.X_FB.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).matrix();
+  LabelParams params;
+  const std::vector<LabelledPoint> all = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  const std::vector<LabelledPoint> kept =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {foot});
+  const Eigen::Isometry3d X_BG = foot.X_FB.inverse();
+  auto inside = [&](const LabelledPoint& lp, double margin) {
+    const Eigen::Vector3d p_B = X_BG * lp.p_G.cast<double>();
+    return (p_B.cwiseAbs().array() <= foot.half_size.array() + margin).all();
+  };
+  int on_foot = 0;
+  for (const LabelledPoint& lp : all) on_foot += inside(lp, params.self_filter_margin - 1e-6);
+  EXPECT_GT(on_foot, 50);
+  for (const LabelledPoint& lp : kept) EXPECT_FALSE(inside(lp, params.self_filter_margin - 1e-6));
+  EXPECT_LE(kept.size(), all.size() - size_t(on_foot));
+  EXPECT_GT(kept.size(), all.size() / 2);
+}
+
+TEST(LabelPoints, InvalidAndFarPointsAreDroppedAndMissingLabelsMeanNoPlane) {
+  PointImage image(4, 1);
+  image.at(0, 0) = {0.0f, 0.0f, 1.0f};
+  image.at(1, 0) = {0.0f, 0.0f, 5.0f};
+  image.at(2, 0) = {std::numeric_limits<float>::quiet_NaN(), 0.0f, 1.0f};
+  LabelParams params;
+  params.max_range = 3.0;
+  const std::vector<LabelledPoint> points =
+      LabelPoints(params, image, PlaneSet{}, Eigen::Isometry3d::Identity(), {});
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_EQ(points[0].h, -std::numeric_limits<float>::infinity());
+  EXPECT_NEAR(points[0].p_G.z(), 1.0f, 1e-6);
+}
+
+}  // namespace
+}  // namespace fognav::perception
