@@ -2,7 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "sim/render.h"
 
 namespace fognav::sim {
 namespace {
@@ -537,6 +544,43 @@ void Controller::CheckContacts(const mjModel* m, const mjData* d) {
     collisions_[it->second].depth = std::max(collisions_[it->second].depth, depth);
   }
   touching_ = std::move(now);
+}
+
+ClipRecorder::ClipRecorder(const mjModel* m, const Humanoid& humanoid, ClipParams params)
+    : humanoid_(&humanoid), params_(std::move(params)), renderer_(std::make_unique<Renderer>(m)) {
+  std::error_code error;
+  std::filesystem::create_directories(params_.dir, error);
+  if (error) throw std::runtime_error("cannot create clip directory '" + params_.dir + "': " + error.message());
+}
+
+ClipRecorder::~ClipRecorder() = default;
+
+void ClipRecorder::operator()(const mjModel* m, const mjData* d, int tick) {
+  if (params_.every <= 0 || tick % params_.every != 0) return;
+  const Eigen::Isometry3d X_WR = RobotFrameInWorld(*humanoid_, d);
+  if (!anchored_) {
+    eye_offset_W_ = X_WR.linear() * params_.eye_R;
+    target_offset_W_ = X_WR.linear() * params_.target_R;
+    anchored_ = true;
+  }
+  // look from the eye at the target, OpenCV axes: z forward, x right, y down
+  const Eigen::Vector3d eye = X_WR.translation() + eye_offset_W_;
+  const Eigen::Vector3d z = (X_WR.translation() + target_offset_W_ - eye).normalized();
+  const Eigen::Vector3d x = z.cross(Eigen::Vector3d::UnitZ()).normalized();
+  Eigen::Isometry3d X_WC = Eigen::Isometry3d::Identity();
+  X_WC.linear() << x, z.cross(x), z;
+  X_WC.translation() = eye;
+  const RenderedView view = renderer_->Render(
+      m, d, PinholeCamera::FromFov(X_WC, params_.width_px, params_.height_px, params_.hfov),
+      {/*depth=*/false, /*surfaces=*/false});
+  cv::Mat rgb(view.height, view.width, CV_8UC3, const_cast<uint8_t*>(view.rgb.data()));
+  cv::Mat bgr;
+  cv::cvtColor(rgb, bgr, cv::COLOR_RGB2BGR);
+  char name[32];
+  std::snprintf(name, sizeof(name), "_%05d.png", frames_);
+  const std::string path = params_.dir + "/" + params_.prefix + name;
+  if (!cv::imwrite(path, bgr)) throw std::runtime_error("cannot write clip frame '" + path + "'");
+  ++frames_;
 }
 
 }  // namespace fognav::sim

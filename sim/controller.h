@@ -12,6 +12,7 @@
 #include <deque>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <utility>
@@ -205,6 +206,44 @@ class Controller {
   int tick_ = 0;
   std::vector<Collision> collisions_;
   std::map<std::pair<int, int>, int> touching_;  // (robot geom, world geom) -> collision index
+};
+
+class Renderer;  // sim/render.h
+
+// What a clip of a motion looks like: frames from an external camera that keeps its offset
+// from the robot's position (not its heading) as set at the first frame.
+struct ClipParams {
+  std::string dir;                // written into, created if missing
+  std::string prefix = "frame";   // files are <dir>/<prefix>_00000.png, ...
+  int every = 5;                  // control ticks between frames
+  int width_px = 320, height_px = 240;
+  double hfov = 1.0;                                     // rad
+  Eigen::Vector3d eye_R = Eigen::Vector3d(0.9, -1.0, 0.7);    // camera, robot frame at start
+  Eigen::Vector3d target_R = Eigen::Vector3d(0.1, 0.0, 0.25);  // looked-at point, same frame
+};
+
+// Dumps a clip of the robot's motion for review: call it after every tick (it fits
+// RunUntilIdle's on_tick through a lambda); it renders off-screen every `every` ticks.
+class ClipRecorder {
+ public:
+  // Makes an off-screen renderer for m; throws SimError if it cannot, std::runtime_error if
+  // dir cannot be created.
+  ClipRecorder(const mjModel* m, const Humanoid& humanoid, ClipParams params);
+  ~ClipRecorder();
+  ClipRecorder(const ClipRecorder&) = delete;
+  ClipRecorder& operator=(const ClipRecorder&) = delete;
+
+  // Renders and writes a frame if tick is a multiple of `every` (d after Controller::Tick).
+  void operator()(const mjModel* m, const mjData* d, int tick);
+  int frames() const { return frames_; }
+
+ private:
+  const Humanoid* humanoid_;
+  ClipParams params_;
+  std::unique_ptr<Renderer> renderer_;
+  bool anchored_ = false;
+  Eigen::Vector3d eye_offset_W_, target_offset_W_;
+  int frames_ = 0;
 };
 
 }  // namespace fognav::sim

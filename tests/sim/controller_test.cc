@@ -1,6 +1,7 @@
 #include "sim/controller.h"
 
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
@@ -349,6 +350,24 @@ TEST_F(ControllerTest, LooksAroundAtTheFloorNearAndAhead) {
   EXPECT_GT(left, 0.2);
   EXPECT_LT(right, -0.2);
   EXPECT_NEAR(views.back().pan, 0.0, 1e-9);
+}
+
+// renders off-screen through OSMesa
+TEST_F(ControllerTest, ClipRecorderWritesAFrameEveryFewTicks) {
+  Load("");
+  ClipParams params;
+  params.dir = ::testing::TempDir() + "/fognav_clip_test";
+  params.every = 10;
+  params.width_px = 160;
+  params.height_px = 120;
+  std::filesystem::remove_all(params.dir);
+  ClipRecorder clip(m_.get(), c_->humanoid(), params);
+  c_->Walk(0.08, 0, 0);  // one stride: 100 ticks
+  c_->RunUntilIdle(m_.get(), d_.get(), [&](int tick) { clip(m_.get(), d_.get(), tick); });
+  EXPECT_EQ(clip.frames(), 10);
+  EXPECT_TRUE(std::filesystem::exists(params.dir + "/frame_00000.png"));
+  EXPECT_TRUE(std::filesystem::exists(params.dir + "/frame_00009.png"));
+  EXPECT_GT(std::filesystem::file_size(params.dir + "/frame_00009.png"), 1000u);
 }
 
 }  // namespace
