@@ -11,8 +11,6 @@
 namespace fognav::navigation {
 namespace {
 
-using perception::CellType;
-using perception::Rgb;
 using perception::RgbImage;
 
 void CheckPicture(const perception::GridWindow& window, int px_per_cell, const RgbImage& picture) {
@@ -109,44 +107,13 @@ void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& windo
   cv::line(image, p - cv::Point(0, r), p + cv::Point(0, r), cv::Scalar(255, 220, 0), 1);
 }
 
-RgbImage DrawFogPlain(const perception::Fog& fog, int px_per_cell) {
-  const perception::GridWindow& w = fog.window;
-  RgbImage picture(w.size_x * std::max(1, px_per_cell), w.size_y * std::max(1, px_per_cell));
-  CheckPicture(w, px_per_cell, picture);
-  // floor grey shade spans the finite floor heights of the map
-  float lo = INFINITY, hi = -INFINITY;
-  for (size_t i = 0; i < fog.height.size(); ++i) {
-    const CellType t = fog.type[i];
-    if ((t == CellType::kFloor || t == CellType::kStairs) && std::isfinite(fog.height[i])) {
-      lo = std::min(lo, fog.height[i]);
-      hi = std::max(hi, fog.height[i]);
-    }
-  }
-  for (int iy = 0; iy < w.size_y; ++iy) {
-    for (int ix = 0; ix < w.size_x; ++ix) {
-      const CellType t = fog.TypeAt(ix, iy);
-      const float h = fog.HeightAt(ix, iy);
-      Rgb c{70, 75, 90};
-      switch (t) {
-        case CellType::kFloor: {
-          const double s = (hi > lo && std::isfinite(h)) ? (h - lo) / (hi - lo) : 0.0;
-          const uint8_t v = uint8_t(235 - 90 * s);
-          c = {v, v, v};
-          break;
-        }
-        case CellType::kStairs: c = {170, 120, 70}; break;
-        case CellType::kBorder: c = {110, 60, 20}; break;
-        case CellType::kTunnel: c = {240, 170, 180}; break;
-        case CellType::kObstacle: c = {0, 0, 0}; break;
-        case CellType::kUnknown: break;
-      }
-      const Eigen::Vector2i p = CellPixel(w, px_per_cell, ix, iy);
-      const int u0 = p.x() - px_per_cell / 2, v0 = p.y() - px_per_cell / 2;
-      for (int v = v0; v < v0 + px_per_cell; ++v) {
-        for (int u = u0; u < u0 + px_per_cell; ++u) picture.at(u, v) = c;
-      }
-    }
-  }
+RgbImage DrawPlanPicture(const perception::Fog& fog, const perception::Pose2& robot_G,
+                         const PlanResult& plan, const Eigen::Vector2d& goal_G, int px_per_cell) {
+  // DrawFog uses at least 2 pixels per cell
+  px_per_cell = std::max(px_per_cell, 2);
+  RgbImage picture = perception::DrawFog(fog, robot_G, px_per_cell);
+  DrawPath(plan, fog.window, px_per_cell, &picture);
+  DrawGoal(goal_G, fog.window, px_per_cell, &picture);
   return picture;
 }
 

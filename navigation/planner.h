@@ -56,6 +56,9 @@ struct PlannerParams {
   // terrain limits (paper Section 6), metres
   double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
   double h_stairs = 0.05;   // largest step the robot climbs; larger changes are never crossed
+  // a step up or down is taken facing it: the heading may differ from the direction of the
+  // floor's height gradient there by at most this angle, radians
+  double max_stairs_heading_error = 0.35;
   // floor cells whose centre is within this distance of a tunnel cell's centre allow crawling
   // (the paper's "enlarged area" around a tunnel), metres
   double crawl_zone_radius = 0.5;
@@ -154,9 +157,11 @@ void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int 
 void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window,
               int px_per_cell, perception::RgbImage* picture);
 
-// A plain FOG picture for when no richer one is at hand: floor grey by height, stairs brown,
-// border dark brown, tunnel pink, obstacle black, unknown dark blue-grey; size as in DrawPath.
-perception::RgbImage DrawFogPlain(const perception::Fog& fog, int px_per_cell);
+// The map picture of a plan: perception::DrawFog (the FOG in the paper's scheme, with the robot
+// and the colour bar) with the path and the goal drawn on top.
+perception::RgbImage DrawPlanPicture(const perception::Fog& fog, const perception::Pose2& robot_G,
+                                     const PlanResult& plan, const Eigen::Vector2d& goal_G,
+                                     int px_per_cell = 6);
 
 }  // namespace fognav::navigation
 

@@ -143,6 +143,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   goal_in_window_ = w.Contains(gx, gy);
 
+  cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
   // lattice geometry
   for (int k = 0; k < kNumHeadings; ++k) {
     step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * w.resolution;
@@ -281,6 +282,31 @@ double Lattice::HeightStep(int from_cell, int to_cell) const {
   const float a = fog_.height[size_t(from_cell)], b = fog_.height[size_t(to_cell)];
   if (!std::isfinite(a) || !std::isfinite(b)) return 0.0;
   return double(b) - double(a);
+}
+
+Eigen::Vector2d Lattice::FloorGradient(int cell) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  auto floor_at = [&](int x, int y, double* h) {
+    if (!w.Contains(x, y)) return false;
+    const size_t i = size_t(w.Index(x, y));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kObstacle || t == CellType::kUnknown || !std::isfinite(fog_.height[i])) {
+      return false;
+    }
+    *h = fog_.height[i];
+    return true;
+  };
+  auto diff = [&](int dx, int dy) {
+    double lo = 0, hi = 0, mid = 0;
+    const bool has_lo = floor_at(ix - dx, iy - dy, &lo), has_hi = floor_at(ix + dx, iy + dy, &hi);
+    const bool has_mid = floor_at(ix, iy, &mid);
+    if (has_lo && has_hi) return 0.5 * (hi - lo);
+    if (has_hi && has_mid) return hi - mid;
+    if (has_lo && has_mid) return mid - lo;
+    return 0.0;
+  };
+  return {diff(1, 0), diff(0, 1)};
 }
 
 bool Lattice::InGoalRegion(int cell) const {
@@ -426,6 +452,16 @@ int Lattice::Successors(int s, Successor* out) {
     if (std::abs(dh) > p_.h_stairs) return;
     const bool step = std::abs(dh) > p_.h_floor;
     if (step && !allow_steps) return;
+    if (step) {
+      // face the step: heading along the floor's height gradient (up or down)
+      const Eigen::Vector2d grad = FloorGradient(cell) + FloorGradient(to);
+      const double norm = grad.norm();
+      if (norm > 0.25 * p_.h_floor) {
+        const double along = std::abs(grad.x() * kSteps[k].dx + grad.y() * kSteps[k].dy) /
+                             (norm * std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)));
+        if (along < cos_stairs_error_ - kEps) return;
+      }
+    }
     if (!Valid(t)) return;
     const bool on_stairs = step || fog_.type[size_t(cell)] == CellType::kStairs ||
                            fog_.type[size_t(to)] == CellType::kStairs;

@@ -113,6 +113,9 @@ class Lattice {
   void ComputeTerminalCosts();
   void ComputeHeuristic();
   double HeightStep(int from_cell, int to_cell) const;
+  // Central-difference floor height gradient at a cell (metres per cell), over the neighbours
+  // that have a floor height; zero where it cannot be formed.
+  Eigen::Vector2d FloorGradient(int cell) const;
 
   const perception::Fog& fog_;
   PlannerParams p_;
@@ -134,6 +137,7 @@ class Lattice {
   SearchMemory* memory_ = nullptr;
   double step_length_[kNumHeadings] = {};  // metres
   double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
+  double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
 };
 
 }  // namespace fognav::navigation::internal

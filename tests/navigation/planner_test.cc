@@ -289,6 +289,22 @@ TEST(Planner, ClimbsA3cmTreadUpThenDown) {
   EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
 }
 
+TEST(Planner, FacesTheStepsItClimbs) {
+  const Fog fog = Treads({{1.4, 0.03f}}, 1.72);
+  const PlannerParams p;
+  // start and goal diagonal to the treads: the robot still steps up and down facing +x
+  const PlanResult r = Plan(fog, {0.50, 0.30, 0.6}, {2.50, 1.30}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  int steps = 0;
+  for (const PathPose& q : r.path) {
+    if (q.move == Move::kStairsUp || q.move == Move::kStairsDown) {
+      ++steps;
+      EXPECT_LE(std::abs(q.pose_G.yaw), p.max_stairs_heading_error) << Moves(r);
+    }
+  }
+  EXPECT_EQ(steps, 2) << Moves(r);
+}
+
 TEST(Planner, ClimbsTheCourseStairs) {
   const Fog fog = Treads({{1.0, 0.03f}, {1.25, 0.06f}, {1.6, 0.03f}}, 1.85);
   const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, PlannerParams());
@@ -447,19 +463,14 @@ TEST(Planner, NamesMovesAndStates) {
 TEST(PathPicture, DrawsThePathOverTheMap) {
   const Fog fog = CorridorWithTable();
   const Eigen::Vector2d goal(2.70, 1.22);
-  const PlanResult r = Plan(fog, {0.50, 1.22, 0.0}, goal, PlannerParams());
+  const Pose2 start{0.50, 1.22, 0.0};
+  const PlanResult r = Plan(fog, start, goal, PlannerParams());
   ASSERT_EQ(r.status, PlanStatus::kOk);
   const int px = 4;
-  perception::RgbImage picture = DrawFogPlain(fog, px);
-  ASSERT_EQ(picture.width, 80 * px);
+  const perception::RgbImage map = perception::DrawFog(fog, start, px);
+  const perception::RgbImage picture = DrawPlanPicture(fog, start, r, goal, px);
+  ASSERT_EQ(picture.width, map.width);  // the map and its colour bar
   ASSERT_EQ(picture.height, 60 * px);
-  // the top-left corner is wall (black), a floor cell is light grey
-  EXPECT_EQ(picture.at(0, 0).r, 0);
-  const Eigen::Vector2i floor_px = CellPixel(fog.window, px, 5, 30);
-  EXPECT_GT(picture.at(floor_px.x(), floor_px.y()).r, 200);
-  const perception::RgbImage before = picture;
-  DrawPath(r, fog.window, px, &picture);
-  DrawGoal(goal, fog.window, px, &picture);
   // a walked cell of the path turns blue, a crawled one red
   const Eigen::Vector2i walk_px = CellPixel(fog.window, px, 25, 30);
   EXPECT_GT(picture.at(walk_px.x(), walk_px.y()).b, 150);
@@ -467,9 +478,31 @@ TEST(PathPicture, DrawsThePathOverTheMap) {
   const Eigen::Vector2i crawl_px = CellPixel(fog.window, px, 42, 30);
   EXPECT_GT(picture.at(crawl_px.x(), crawl_px.y()).r, 180);
   EXPECT_LT(picture.at(crawl_px.x(), crawl_px.y()).g, 100);
-  // far from the path nothing changed
+  // far from the path, and in the colour bar, nothing changed
   const Eigen::Vector2i far_px = CellPixel(fog.window, px, 10, 20);
-  EXPECT_EQ(picture.at(far_px.x(), far_px.y()).r, before.at(far_px.x(), far_px.y()).r);
+  EXPECT_EQ(picture.at(far_px.x(), far_px.y()).g, map.at(far_px.x(), far_px.y()).g);
+  for (int v = 0; v < picture.height; ++v) {
+    for (int u = 80 * px; u < picture.width; ++u) {
+      ASSERT_EQ(picture.at(u, v).r, map.at(u, v).r);
+      ASSERT_EQ(picture.at(u, v).g, map.at(u, v).g);
+    }
+  }
+}
+
+TEST(PathPicture, DrawsTheGoalAndClipsPosesOutsideTheMap) {
+  const Fog fog = FlatFog(50, 50, 0.04);
+  PlanResult r;
+  r.status = PlanStatus::kOk;
+  r.path = {{{0.5, 1.02, 0.0}, Move::kNone, Posture::kUpright},
+            {{5.0, 1.02, 0.0}, Move::kWalk, Posture::kUpright}};
+  perception::RgbImage picture(50 * 3 + 7, 50 * 3);  // a 7 px bar on the right
+  DrawPath(r, fog.window, 3, &picture);
+  DrawGoal({5.0, 1.0}, fog.window, 3, &picture);
+  for (int v = 0; v < picture.height; ++v) {
+    for (int u = 150; u < picture.width; ++u) ASSERT_EQ(picture.at(u, v).b, 0);
+  }
+  const Eigen::Vector2i on_line = CellPixel(fog.window, 3, 40, 25);
+  EXPECT_GT(picture.at(on_line.x(), on_line.y()).b, 100);
 }
 
 }  // namespace
