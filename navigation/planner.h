@@ -59,8 +59,9 @@ struct PlannerParams {
   // a step up or down is taken facing it: the heading may differ from the direction of the
   // floor's height gradient there by at most this angle, radians
   double max_stairs_heading_error = 0.35;
-  // floor cells whose centre is within this distance of a tunnel cell's centre allow crawling
-  // (the paper's "enlarged area" around a tunnel), metres
+  // floor and unknown cells whose centre is within this distance of a tunnel cell's centre
+  // allow crawling (the paper's "enlarged area" around a tunnel; unknown ones at the unknown
+  // penalty, as the robot may lose sight of the floor under itself), metres
   double crawl_zone_radius = 0.5;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
@@ -92,7 +93,7 @@ struct PlannerParams {
   double exit_factor = 3.0;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free); metres
-  double start_escape_radius = 0.06;
+  double start_escape_radius = 0.08;
 };
 
 // Whether a plan was found.

@@ -204,7 +204,8 @@ void Lattice::ComputePermissions() {
     const CellType t = fog_.type[i];
     ok_[0][i] = t == CellType::kFloor || t == CellType::kStairs || t == CellType::kUnknown;
     ok_[1][i] = t == CellType::kTunnel ||
-                (t == CellType::kFloor && tunnel_d2[i] <= zone_cells * zone_cells + kEps);
+                ((t == CellType::kFloor || t == CellType::kUnknown) &&
+                 tunnel_d2[i] <= zone_cells * zone_cells + kEps);
   }
   for (int q = 0; q < 2; ++q) {
     std::vector<uint8_t> blocked(n);

@@ -60,7 +60,7 @@ void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerPar
       if (r.path[i].posture == Posture::kUpright) {
         ASSERT_NE(t, CellType::kTunnel) << "pose " << i << " cell " << ix << "," << iy;
       } else {
-        ASSERT_TRUE(t == CellType::kTunnel || t == CellType::kFloor)
+        ASSERT_TRUE(t == CellType::kTunnel || t == CellType::kFloor || t == CellType::kUnknown)
             << "pose " << i << " cell " << ix << "," << iy;
       }
     }
@@ -369,6 +369,31 @@ TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
   const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, PlannerParams());
   EXPECT_EQ(r.status, PlanStatus::kNoPath);
   EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+}
+
+// A wall with an L-shaped slot 0.16 m wide: open to a robot without orientation, but too narrow
+// to turn the corner in, so only the full search can tell that the goal is enclosed.
+TEST(Planner, GoalBehindASlotTooNarrowToTurnInIsEnclosed) {
+  Fog fog = FlatFog(100, 100, 0.04);
+  FillBox(&fog, 2.0, 0.0, 2.4, 4.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.96, 1.0, 2.26, 1.16, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.0, 2.26, 1.8, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.64, 2.44, 1.8, CellType::kFloor, 0.0f);
+  const PlanResult r = Plan(fog, {0.50, 2.02, 0.0}, {3.20, 2.02}, PlannerParams());
+  EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  EXPECT_GT(r.expanded, 10000);  // it did search
+}
+
+TEST(Planner, CrawlsOnUnknownCellsNextToATunnel) {
+  // the floor under the table's edge has gone unknown, as under a crawling robot
+  Fog fog = CorridorWithTable();
+  FillBox(&fog, 1.3, 0.6, 1.6, 1.8, CellType::kUnknown, -INFINITY);
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {1.50, 1.22, 0.0}, {2.70, 1.22}, p, Posture::kCrawling);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  EXPECT_EQ(r.path[1].posture, Posture::kCrawling);
+  ExpectFootprintsClear(fog, r, p);
 }
 
 TEST(Planner, ReportsABlockedGoalAndABlockedStart) {
