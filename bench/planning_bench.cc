@@ -65,5 +65,25 @@ void BM_PlanningCourseReplan(benchmark::State& bench) {
 }
 BENCHMARK(BM_PlanningCourseReplan)->Name("Planning/course_replan")->Unit(benchmark::kMillisecond);
 
+// the slowest kind of query: a goal that only the full search shows to be enclosed (a wall with
+// an L-shaped slot too narrow to turn the corner in), so every reachable state is expanded
+void BM_PlanningExhaustive(benchmark::State& bench) {
+  using perception::CellType;
+  perception::Fog fog = internal::FlatFog(100, 100, 0.04);
+  internal::FillBox(&fog, 2.0, 0.0, 2.4, 4.0, CellType::kObstacle, 0.3f);
+  internal::FillBox(&fog, 1.96, 1.0, 2.26, 1.16, CellType::kFloor, 0.0f);
+  internal::FillBox(&fog, 2.1, 1.0, 2.26, 1.8, CellType::kFloor, 0.0f);
+  internal::FillBox(&fog, 2.1, 1.64, 2.44, 1.8, CellType::kFloor, 0.0f);
+  const PlannerParams params;
+  int64_t expanded = 0;
+  for (auto _ : bench) {
+    const PlanResult r = Plan(fog, {0.5, 2.02, 0.0}, {3.2, 2.02}, params);
+    if (r.reason != NoPathReason::kGoalEnclosed) bench.SkipWithError("expected an enclosed goal");
+    expanded += r.expanded;
+  }
+  bench.counters["expanded"] = double(expanded) / double(std::max<int64_t>(1, bench.iterations()));
+}
+BENCHMARK(BM_PlanningExhaustive)->Name("Planning/exhaustive")->Unit(benchmark::kMillisecond);
+
 }  // namespace
 }  // namespace fognav::navigation

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -21,16 +22,76 @@ PlanResult NoPath(NoPathReason reason, int expanded = 0) {
   return r;
 }
 
-// open-list entry; the heap keeps the smallest f on top, ties broken toward larger g (deeper)
+// open-list entry: smallest f first, ties broken toward larger g (deeper)
 struct OpenEntry {
   double f;
   float g;  // only breaks ties
-  int state;
+  int32_t state;
 };
-struct OpenAfter {
-  bool operator()(const OpenEntry& a, const OpenEntry& b) const {
-    return a.f > b.f || (a.f == b.f && a.g < b.g);
+
+// The open list: an indexed 4-ary min-heap holding each state at most once, so an improved
+// state moves up in place instead of leaving a stale copy behind. Storage is borrowed, reused
+// from search to search.
+class OpenList {
+ public:
+  OpenList(std::vector<OpenEntry>* heap, std::vector<int32_t>* position)
+      : heap_(*heap), position_(*position) {
+    heap_.clear();
   }
+  bool empty() const { return heap_.empty(); }
+  // Inserts e, or if its state is already `queued`, lowers that state's key to e's.
+  void Push(const OpenEntry& e, bool queued) {
+    size_t i = heap_.size();
+    if (queued) {
+      i = size_t(position_[size_t(e.state)]);
+    } else {
+      heap_.push_back(e);
+    }
+    SiftUp(i, e);
+  }
+  OpenEntry Pop() {
+    const OpenEntry top = heap_.front();
+    const OpenEntry last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) SiftDown(0, last);
+    return top;
+  }
+
+ private:
+  static bool Before(const OpenEntry& a, const OpenEntry& b) {
+    return a.f < b.f || (a.f == b.f && a.g > b.g);
+  }
+  void Place(size_t i, const OpenEntry& e) {
+    heap_[i] = e;
+    position_[size_t(e.state)] = int32_t(i);
+  }
+  void SiftUp(size_t i, const OpenEntry& e) {
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!Before(e, heap_[parent])) break;
+      Place(i, heap_[parent]);
+      i = parent;
+    }
+    Place(i, e);
+  }
+  void SiftDown(size_t i, const OpenEntry& e) {
+    const size_t n = heap_.size();
+    while (true) {
+      const size_t first = 4 * i + 1;
+      if (first >= n) break;
+      size_t best = first;
+      for (size_t j = first + 1; j < std::min(first + 4, n); ++j) {
+        if (Before(heap_[j], heap_[best])) best = j;
+      }
+      if (!Before(heap_[best], e)) break;
+      Place(i, heap_[best]);
+      i = best;
+    }
+    Place(i, e);
+  }
+
+  std::vector<OpenEntry>& heap_;
+  std::vector<int32_t>& position_;
 };
 
 }  // namespace
@@ -70,9 +131,8 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
   // per-state arrays and the open list are reused between calls on this thread
   thread_local internal::SearchMemory thread_memory;
-  thread_local std::vector<OpenEntry> thread_open;
+  thread_local std::vector<OpenEntry> thread_heap;
   internal::SearchMemory& memory = thread_memory;
-  std::vector<OpenEntry>& open = thread_open;
   internal::Lattice lattice(fog, goal_G, p, &memory);
 
   // where the search may start and end
@@ -93,18 +153,19 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   std::vector<Move>& move_in = memory.move;
   const uint32_t reached = lattice.generation() << 1, closed = reached | 1u;
   auto g_of = [&](size_t s) { return (stamp[s] & ~1u) == reached ? g[s] : kInf; };
-  open.clear();
+  // a state is in the open list exactly while its stamp is `reached`
+  OpenList open(&thread_heap, &memory.heap_position);
   for (size_t i = 0; i < seeds.size(); ++i) {
     const internal::Seed& seed = seeds[i];
     const size_t s = size_t(seed.state);
     const double h = lattice.Heuristic(seed.state);
     if (h == kInf || seed.cost >= g_of(s)) continue;
+    const bool queued = stamp[s] == reached;
     stamp[s] = reached;
     g[s] = seed.cost;
     parent[s] = -1 - int32_t(i);
     move_in[s] = seed.move;
-    open.push_back({seed.cost + h, float(seed.cost), seed.state});
-    std::push_heap(open.begin(), open.end(), OpenAfter());
+    open.Push({seed.cost + h, float(seed.cost), seed.state}, queued);
   }
 
   // A*: with a consistent heuristic each state is expanded once, with its optimal g
@@ -113,12 +174,9 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   int expanded = 0;
   internal::Successor succ[internal::kMaxSuccessors];
   while (!open.empty()) {
-    std::pop_heap(open.begin(), open.end(), OpenAfter());
-    const OpenEntry top = open.back();
-    open.pop_back();
+    const OpenEntry top = open.Pop();
     if (top.f >= best_total) break;
     const size_t s = size_t(top.state);
-    if (stamp[s] == closed) continue;
     stamp[s] = closed;
     ++expanded;
     const double end = g[s] + lattice.TerminalCost(top.state);
@@ -134,12 +192,12 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
       if (ng >= g_of(t)) continue;
       const double f = ng + lattice.Heuristic(succ[i].state);
       if (f >= best_total) continue;  // also drops states that cannot reach the goal (h = inf)
+      const bool queued = stamp[t] == reached;
       stamp[t] = reached;
       g[t] = ng;
       parent[t] = int32_t(s);
       move_in[t] = succ[i].move;
-      open.push_back({f, float(ng), succ[i].state});
-      std::push_heap(open.begin(), open.end(), OpenAfter());
+      open.Push({f, float(ng), succ[i].state}, queued);
     }
   }
   if (best_state < 0) return NoPath(NoPathReason::kGoalEnclosed, expanded);

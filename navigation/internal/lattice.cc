@@ -124,6 +124,7 @@ void SearchMemory::Begin(int num_states) {
     g.resize(n);
     parent.resize(n);
     move.resize(n);
+    heap_position.resize(n);
   }
 }
 

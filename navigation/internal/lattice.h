@@ -58,6 +58,7 @@ struct SearchMemory {
   std::vector<double> g;
   std::vector<int32_t> parent;  // a state, or -1 - seed index for seeds
   std::vector<Move> move;
+  std::vector<int32_t> heap_position;  // index in the open list while a state is in it
   // Starts a query over num_states states: new generation, arrays grown as needed.
   void Begin(int num_states);
 };
