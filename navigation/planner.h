@@ -44,13 +44,17 @@ inline constexpr int kNumHeadings = 16;
 // 0.15 m x 0.29 m, so on 4 cm cells it covers 3 cells along the heading and 7 across: a gap of
 // 0.22 m (5 or 4 free cells once mapped) is too narrow to walk through facing it (7 cells) but
 // wide enough to side-step through (3 cells); a gap of 2 free cells (0.08 m, narrower than the
-// 0.12 m depth) is passable by no move. The crawling footprint is 0.43 m x 0.29 m (11 x 7 cells).
+// 0.12 m depth) is passable by no move. The crawling footprint is 0.53 m x 0.29 m, its centre
+// 0.10 m ahead of the origin (the humanoid on knees and hands, head raised, toes behind).
+// The shipped humanoid (models/humanoid.xml) is 0.234 m across the arms and 0.11 m long at the
+// soles, inside these sizes.
 struct PlannerParams {
   // robot body, metres
   double shoulder_width = 0.26;  // upright extent across the heading
   double depth = 0.12;           // upright extent along the heading (feet and torso)
-  double crawl_length = 0.40;    // crawling extent along the heading (hands to feet)
+  double crawl_length = 0.50;    // crawling extent along the heading (toes to head)
   double crawl_width = 0.26;     // crawling extent across the heading
+  double crawl_offset = 0.10;    // centre of the crawling extent ahead of the robot's origin
   double margin = 0.015;         // safety margin added on every side of both footprints
 
   // terrain limits (paper Section 6), metres
@@ -62,7 +66,7 @@ struct PlannerParams {
   // floor and unknown cells whose centre is within this distance of a tunnel cell's centre
   // allow crawling (the paper's "enlarged area" around a tunnel; unknown ones at the unknown
   // penalty, as the robot may lose sight of the floor under itself), metres
-  double crawl_zone_radius = 0.5;
+  double crawl_zone_radius = 0.6;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible

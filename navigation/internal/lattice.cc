@@ -157,9 +157,12 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
                                  0.5 * p.crawl_width + p.margin};
   for (int q = 0; q < 2; ++q) {
     const double a = half_along[q], b = half_across[q];
+    const double offset = q == 0 ? 0.0 : p.crawl_offset;  // rectangle centre ahead of the origin
     if (!(a > 0 && b > 0)) Die("Plan: footprint sizes must be positive");
-    inner_radius_cells_[q] = std::min(a, b) / w.resolution;
-    outer_radius_cells_[q] = std::hypot(a, b) / w.resolution;
+    if (std::abs(offset) >= a) Die("Plan: crawl_offset must be inside the crawling footprint");
+    // circles about the robot's origin inside and around the rectangle
+    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / w.resolution;
+    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / w.resolution;
     const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
     outer_reach_cells_[q] = 0;
     for (int k = 0; k < kNumHeadings; ++k) {
@@ -168,7 +171,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
       cells.clear();
       for (int dy = -reach; dy <= reach; ++dy) {
         for (int dx = -reach; dx <= reach; ++dx) {
-          const double u = (dx * c + dy * s) * w.resolution;
+          const double u = (dx * c + dy * s) * w.resolution - offset;
           const double v = (-dx * s + dy * c) * w.resolution;
           if (std::abs(u) <= a + kEps && std::abs(v) <= b + kEps) {
             cells.push_back({dx, dy});

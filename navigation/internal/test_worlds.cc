@@ -86,12 +86,12 @@ Course PaperCourse() {
   FillBox(&c.fog, 2.15, 0.11, 2.35, 0.42, CellType::kObstacle, 0.20f);
   FillBox(&c.fog, 2.15, 0.42, 2.35, 0.7, CellType::kObstacle, 0.08f);
   // a table across the corridor: tunnel under the top, legs at the corners
-  FillBox(&c.fog, 2.85, -0.7, 3.45, 0.7, CellType::kTunnel, 0.0f);
-  for (double lx : {2.85, 3.41}) {
+  FillBox(&c.fog, 2.80, -0.7, 3.40, 0.7, CellType::kTunnel, 0.0f);
+  for (double lx : {2.80, 3.36}) {
     for (double ly : {-0.70, 0.66}) FillBox(&c.fog, lx, ly, lx + 0.04, ly + 0.04, CellType::kObstacle, 0.56f);
   }
   c.start_G = {0.0, 0.0, 0.0};
-  c.goal_G = {3.65, 0.0};
+  c.goal_G = {3.55, 0.0};
   return c;
 }
 

@@ -37,11 +37,12 @@ std::vector<std::pair<int, int>> FootprintCells(const Fog& fog, const PathPose& 
   const bool up = q.posture == Posture::kUpright;
   const double a = 0.5 * (up ? p.depth : p.crawl_length) + p.margin;
   const double b = 0.5 * (up ? p.shoulder_width : p.crawl_width) + p.margin;
+  const double offset = up ? 0.0 : p.crawl_offset;
   std::vector<std::pair<int, int>> cells;
   for (int iy = 0; iy < fog.window.size_y; ++iy) {
     for (int ix = 0; ix < fog.window.size_x; ++ix) {
       const Eigen::Vector2d d = fog.window.CellCenter(ix, iy) - Eigen::Vector2d(q.pose_G.x, q.pose_G.y);
-      const double u = d.x() * std::cos(q.pose_G.yaw) + d.y() * std::sin(q.pose_G.yaw);
+      const double u = d.x() * std::cos(q.pose_G.yaw) + d.y() * std::sin(q.pose_G.yaw) - offset;
       const double v = -d.x() * std::sin(q.pose_G.yaw) + d.y() * std::cos(q.pose_G.yaw);
       if (std::abs(u) <= a + 1e-6 && std::abs(v) <= b + 1e-6) cells.push_back({ix, iy});
     }
