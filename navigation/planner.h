@@ -48,6 +48,11 @@ inline constexpr int kNumHeadings = 16;
 // 0.10 m ahead of the origin (the humanoid on knees and hands, head raised, toes behind).
 // The shipped humanoid (models/humanoid.xml) is 0.234 m across the arms and 0.11 m long at the
 // soles, inside these sizes.
+// What may lie under a footprint: standing, floor, stairs and unknown cells, and border cells
+// within h_floor of the floor under the robot's origin (the paper's border marks both sides of a
+// drop; the robot may stand at the foot of a wall or block or on the rim of a platform, but its
+// footprint never spans the drop); crawling, tunnel cells and floor or unknown cells near them.
+// Obstacle cells never.
 struct PlannerParams {
   // robot body, metres
   double shoulder_width = 0.26;  // upright extent across the heading
@@ -83,12 +88,13 @@ struct PlannerParams {
   // clearance cost, added per metre: clearance_weight * min(h, clearance_height_cap) /
   // clearance_height_ref * max(0, 1 - d / clearance_radius) for the worst obstacle cell at
   // centre distance d whose top is h above the neighbouring floor, so the robot keeps further
-  // from tall obstacles than from low ones when it has room
+  // from tall obstacles than from low ones when it has room; the upper edge of a drop (a border
+  // cell, e.g. the rim of a box whose top the map holds as floor) counts as an obstacle as high
+  // as the drop is deep
   double clearance_weight = 1.0;
-  double clearance_radius = 0.6;         // metres
-  double clearance_height_ref = 0.2;     // metres
-  double clearance_height_cap = 0.3;     // metres; walls and unknown heights count as this
-  double border_clearance_height = 0.1;  // border (drop-off) cells count as obstacles this high
+  double clearance_radius = 0.6;      // metres
+  double clearance_height_ref = 0.2;  // metres
+  double clearance_height_cap = 0.3;  // metres; walls and unknown heights count as this
 
   // goal and start
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it

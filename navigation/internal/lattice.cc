@@ -211,9 +211,15 @@ void Lattice::ComputePermissions() {
                 ((t == CellType::kFloor || t == CellType::kUnknown) &&
                  tunnel_d2[i] <= zone_cells * zone_cells + kEps);
   }
+  // border cells may lie under a standing robot on their own level (see FootprintFits), so they
+  // count as blocked for the "certainly fits" test but not for the "certainly blocked" one
   for (int q = 0; q < 2; ++q) {
     std::vector<uint8_t> blocked(n);
     for (size_t i = 0; i < n; ++i) blocked[i] = !ok_[q][i];
+    SquaredDistanceTransform(blocked, w.size_x, w.size_y, &maybe_blocked_d2_[q]);
+    if (q == 0) {
+      for (size_t i = 0; i < n; ++i) blocked[i] = blocked[i] && fog_.type[i] != CellType::kBorder;
+    }
     SquaredDistanceTransform(blocked, w.size_x, w.size_y, &blocked_d2_[q]);
   }
 }
@@ -249,7 +255,7 @@ void Lattice::ComputeCellCosts() {
       if (!blocking(t)) continue;
       // only cells on the rim of a blocked blob: the inner ones are farther from any free cell
       bool rim = false;
-      double ref_floor = -kInf;
+      double ref_floor = -kInf, low_floor = kInf;
       for (int ny = iy - 1; ny <= iy + 1; ++ny) {
         for (int nx = ix - 1; nx <= ix + 1; ++nx) {
           if (!w.Contains(nx, ny) || (nx == ix && ny == iy)) continue;
@@ -257,13 +263,17 @@ void Lattice::ComputeCellCosts() {
           if (!blocking(fog_.type[j])) rim = true;
           if (has_floor(fog_.type[j]) && std::isfinite(fog_.height[j])) {
             ref_floor = std::max(ref_floor, double(fog_.height[j]));
+            low_floor = std::min(low_floor, double(fog_.height[j]));
           }
         }
       }
       if (!rim) continue;
       double rel = p_.clearance_height_cap;
       if (t == CellType::kBorder) {
-        rel = p_.border_clearance_height;
+        // the upper edge of a drop stands as high above the floor below as the drop is deep
+        rel = std::isfinite(low_floor) && std::isfinite(fog_.height[i])
+                  ? double(fog_.height[i]) - low_floor
+                  : p_.h_stairs;
       } else if (std::isfinite(fog_.height[i]) && std::isfinite(ref_floor)) {
         rel = double(fog_.height[i]) - ref_floor;
       }
@@ -350,7 +360,8 @@ void Lattice::ComputeHeuristic() {
   for (size_t i = 0; i < n; ++i) {
     for (int q = 0; q < 2; ++q) {
       const double in = inner_radius_cells_[q] - kEps;
-      open[2 * i + size_t(q)] = ok_[q][i] && !(in > 0 && blocked_d2_[q][i] <= in * in);
+      const bool centre_ok = ok_[q][i] || (q == 0 && fog_.type[i] == CellType::kBorder);
+      open[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
     }
   }
   const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
@@ -416,8 +427,10 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   const bool inside =
       ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;
   const double out = outer_radius_cells_[q] + kEps;
-  if (d2 > out * out && (q == 0 || inside)) return true;
+  const double maybe_d2 = maybe_blocked_d2_[q][size_t(cell)];
+  if (maybe_d2 > out * out && (q == 0 || inside)) return true;
   const std::vector<uint8_t>& ok = ok_[q];
+  const float centre_h = fog_.height[size_t(cell)];
   for (const CellStep& o : footprint_[q][heading]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) {
@@ -425,7 +438,15 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
       if (q == 1) return false;
       continue;
     }
-    if (!ok[size_t(w.Index(nx, ny))]) return false;
+    const size_t i = size_t(w.Index(nx, ny));
+    if (ok[i]) continue;
+    // a border cell is the edge of a drop: a standing robot may have it underfoot on its own
+    // level (the foot of a wall or block, the rim of a platform it stands on), never across
+    if (q == 0 && fog_.type[i] == CellType::kBorder && std::isfinite(centre_h) &&
+        std::isfinite(fog_.height[i]) && std::abs(fog_.height[i] - centre_h) <= p_.h_floor) {
+      continue;
+    }
+    return false;
   }
   return true;
 }

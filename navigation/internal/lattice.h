@@ -126,7 +126,10 @@ class Lattice {
   double min_factor_ = 1.0;
 
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
-  std::vector<double> blocked_d2_[2];   // per cell: squared distance (cells) to a blocked cell
+  // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
+  // (border cells block a standing robot only off its own level)
+  std::vector<double> blocked_d2_[2];
+  std::vector<double> maybe_blocked_d2_[2];
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
