@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <regex>
 #include <set>
 #include <sstream>
 
@@ -262,7 +261,8 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
   Scenario s;
   s.source = source;
   s.name = r.String(root["name"], "name");
-  if (!std::regex_match(s.name, std::regex("[a-z0-9_]+"))) {
+  auto name_char = [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; };
+  if (s.name.empty() || !std::all_of(s.name.begin(), s.name.end(), name_char)) {
     r.Fail(root["name"], "name", "expected lower-case letters, digits and _ only");
   }
   if (root["description"]) s.description = r.String(root["description"], "description");
