@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "navigation/internal/lattice.h"
+#include "navigation/internal/open_list.h"
 
 namespace fognav::navigation {
 namespace {
@@ -21,78 +22,6 @@ PlanResult NoPath(NoPathReason reason, int expanded = 0) {
   r.expanded = expanded;
   return r;
 }
-
-// open-list entry: smallest f first, ties broken toward larger g (deeper)
-struct OpenEntry {
-  double f;
-  float g;  // only breaks ties
-  int32_t state;
-};
-
-// The open list: an indexed 4-ary min-heap holding each state at most once, so an improved
-// state moves up in place instead of leaving a stale copy behind. Storage is borrowed, reused
-// from search to search.
-class OpenList {
- public:
-  OpenList(std::vector<OpenEntry>* heap, std::vector<int32_t>* position)
-      : heap_(*heap), position_(*position) {
-    heap_.clear();
-  }
-  bool empty() const { return heap_.empty(); }
-  // Inserts e, or if its state is already `queued`, lowers that state's key to e's.
-  void Push(const OpenEntry& e, bool queued) {
-    size_t i = heap_.size();
-    if (queued) {
-      i = size_t(position_[size_t(e.state)]);
-    } else {
-      heap_.push_back(e);
-    }
-    SiftUp(i, e);
-  }
-  OpenEntry Pop() {
-    const OpenEntry top = heap_.front();
-    const OpenEntry last = heap_.back();
-    heap_.pop_back();
-    if (!heap_.empty()) SiftDown(0, last);
-    return top;
-  }
-
- private:
-  static bool Before(const OpenEntry& a, const OpenEntry& b) {
-    return a.f < b.f || (a.f == b.f && a.g > b.g);
-  }
-  void Place(size_t i, const OpenEntry& e) {
-    heap_[i] = e;
-    position_[size_t(e.state)] = int32_t(i);
-  }
-  void SiftUp(size_t i, const OpenEntry& e) {
-    while (i > 0) {
-      const size_t parent = (i - 1) / 4;
-      if (!Before(e, heap_[parent])) break;
-      Place(i, heap_[parent]);
-      i = parent;
-    }
-    Place(i, e);
-  }
-  void SiftDown(size_t i, const OpenEntry& e) {
-    const size_t n = heap_.size();
-    while (true) {
-      const size_t first = 4 * i + 1;
-      if (first >= n) break;
-      size_t best = first;
-      for (size_t j = first + 1; j < std::min(first + 4, n); ++j) {
-        if (Before(heap_[j], heap_[best])) best = j;
-      }
-      if (!Before(heap_[best], e)) break;
-      Place(i, heap_[best]);
-      i = best;
-    }
-    Place(i, e);
-  }
-
-  std::vector<OpenEntry>& heap_;
-  std::vector<int32_t>& position_;
-};
 
 }  // namespace
 
@@ -131,7 +60,7 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
   // per-state arrays and the open list are reused between calls on this thread
   thread_local internal::SearchMemory thread_memory;
-  thread_local std::vector<OpenEntry> thread_heap;
+  thread_local std::vector<internal::OpenEntry> thread_heap;
   internal::SearchMemory& memory = thread_memory;
   internal::Lattice lattice(fog, goal_G, p, &memory);
 
@@ -154,7 +83,7 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   const uint32_t reached = lattice.generation() << 1, closed = reached | 1u;
   auto g_of = [&](size_t s) { return (stamp[s] & ~1u) == reached ? g[s] : kInf; };
   // a state is in the open list exactly while its stamp is `reached`
-  OpenList open(&thread_heap, &memory.heap_position);
+  internal::OpenList open(&thread_heap, &memory.heap_position);
   for (size_t i = 0; i < seeds.size(); ++i) {
     const internal::Seed& seed = seeds[i];
     const size_t s = size_t(seed.state);
@@ -174,7 +103,7 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   int expanded = 0;
   internal::Successor succ[internal::kMaxSuccessors];
   while (!open.empty()) {
-    const OpenEntry top = open.Pop();
+    const internal::OpenEntry top = open.Pop();
     if (top.f >= best_total) break;
     const size_t s = size_t(top.state);
     stamp[s] = closed;

@@ -100,7 +100,7 @@ struct PlannerParams {
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
   // a goal outside the map window is approached by planning to the reachable state minimising
   // path cost + exit_factor * its straight-line distance to the goal
-  double exit_factor = 3.0;
+  double exit_factor = 5.0;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free); metres
   double start_escape_radius = 0.08;

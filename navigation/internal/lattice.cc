@@ -6,8 +6,9 @@
 #include <cstdlib>
 #include <functional>
 #include <limits>
-#include <queue>
 #include <utility>
+
+#include "navigation/internal/open_list.h"
 
 namespace fognav::navigation::internal {
 namespace {
@@ -367,45 +368,54 @@ void Lattice::ComputeHeuristic() {
   const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
   const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
   const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
+  std::vector<uint8_t> stairs(n);
+  for (size_t i = 0; i < n; ++i) stairs[i] = fog_.type[i] == CellType::kStairs;
+  // cell offsets of the 16 steps
+  int step_offset[kNumHeadings];
+  for (int k = 0; k < kNumHeadings; ++k) step_offset[k] = kSteps[k].dy * w.size_x + kSteps[k].dx;
+
+  // Dijkstra from every end node at once; a node is queued while its stamp is 1, done at 2
   heuristic_.assign(2 * n, kInf);
-  using Entry = std::pair<double, int>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (size_t node = 0; node < 2 * n; ++node) {
-    const double h = terminal_[node / 2];
-    if (open[node] && h < kInf) {
-      heuristic_[node] = h;
-      queue.push({h, int(node)});
-    }
-  }
+  std::vector<uint8_t> stamp(2 * n, 0);
+  std::vector<int32_t> position(2 * n);
+  std::vector<OpenEntry> heap;
+  heap.reserve(2 * n);
+  OpenList queue(&heap, &position);
   auto relax = [&](int node, double h) {
-    if (h < heuristic_[size_t(node)]) {
-      heuristic_[size_t(node)] = h;
-      queue.push({h, node});
-    }
+    if (stamp[size_t(node)] == 2 || h >= heuristic_[size_t(node)]) return;
+    heuristic_[size_t(node)] = h;
+    queue.Push({h, 0.0f, node}, stamp[size_t(node)] == 1);
+    stamp[size_t(node)] = 1;
   };
+  for (size_t node = 0; node < 2 * n; ++node) {
+    if (open[node]) relax(int(node), terminal_[node / 2]);
+  }
+  const float* height = fog_.height.data();
   while (!queue.empty()) {
-    const auto [h, node] = queue.top();
-    queue.pop();
-    if (h > heuristic_[size_t(node)]) continue;
+    const OpenEntry top = queue.Pop();
+    const int node = top.state;
+    const double h = top.f;
+    stamp[size_t(node)] = 2;
     const int i = node / 2, q = node % 2;
     const int ix = i % w.size_x, iy = i / w.size_x;
     if (open[size_t(node ^ 1)]) relax(node ^ 1, h + p_.posture_change_cost);
-    const bool stairs_here = fog_.type[size_t(i)] == CellType::kStairs;
+    const double max_dh = q == 0 ? p_.h_stairs : p_.h_floor;
+    const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
     for (int k = 0; k < kNumHeadings; ++k) {
-      const int nx = ix + kSteps[k].dx, ny = iy + kSteps[k].dy;
-      if (!w.Contains(nx, ny)) continue;
-      const int j = w.Index(nx, ny);
-      if (!open[2 * size_t(j) + size_t(q)]) continue;
-      const double dh = std::abs(HeightStep(i, j));
-      if (dh > (q == 0 ? p_.h_stairs : p_.h_floor)) continue;
-      double factor = crawl_factor;
-      if (q == 0) {
-        const bool stairs = stairs_here || dh > p_.h_floor ||
-                            fog_.type[size_t(j)] == CellType::kStairs;
-        factor = stairs ? stairs_factor : upright_factor;
+      if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
+      const int j = i + step_offset[k];
+      const int other = 2 * j + q;
+      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
+      double dh = 0.0;
+      if (std::isfinite(height[i]) && std::isfinite(height[j])) {
+        dh = std::abs(double(height[j]) - double(height[i]));
       }
-      relax(2 * j + q, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
-                                                              cell_cost_[size_t(j)])));
+      if (dh > max_dh) continue;
+      double factor = crawl_factor;
+      if (q == 0) factor = (stairs[size_t(i)] || stairs[size_t(j)] || dh > p_.h_floor)
+                               ? stairs_factor : upright_factor;
+      relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
+                                                          cell_cost_[size_t(j)])));
     }
   }
 }
