@@ -141,6 +141,11 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   min_factor_ = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor, p.stairs_factor,
                           p.crawl_factor, p.crawl_factor * p.backward_factor});
   if (!(min_factor_ > 0)) Die("Plan: move cost factors must be positive");
+  if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
+        p.clearance_weight >= 0 && p.exit_factor >= 0)) {
+    Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
+  }
+  if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   goal_in_window_ = w.Contains(gx, gy);

@@ -454,6 +454,19 @@ TEST(Planner, GoalOutsideTheWindowPlansToTheBestCellTowardIt) {
   ExpectFootprintsClear(fog, r, p);
 }
 
+TEST(Planner, GoalBeyondTheWindowLeadsThroughTheCourseNotUpToItsHardPart) {
+  // re-planning from where a partial path ends must make progress, so the path should not stop
+  // in front of the table just because crawling costs more than walking
+  const internal::Course course = internal::PaperCourse();
+  const PlannerParams p;
+  const PlanResult r = Plan(course.fog, course.start_G, {6.0, 0.3}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_FALSE(r.reaches_goal);
+  EXPECT_GT(r.path.back().pose_G.x, 3.4) << Moves(r);
+  EXPECT_GT(Count(r, Move::kCrawl), 0);
+  ExpectFootprintsClear(course.fog, r, p);
+}
+
 TEST(Planner, StartsCrawlingUnderATable) {
   const Fog fog = CorridorWithTable();
   const PlannerParams p;
