@@ -62,6 +62,7 @@ Fog ClutteredFog(uint32_t seed) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   Fog fog = FlatFog(36, 30, 0.04);  // 1.44 m x 1.2 m
   FillBox(&fog, 0.60, 0.0, 0.76, 1.2, CellType::kFloor, 0.03f);
+  FillBox(&fog, 0.90, 0.70, 1.10, 0.90, CellType::kFloor, 0.10f);  // a platform: border rim
   ClassifyFloorChanges(&fog, 0.015, 0.05);
   FillBox(&fog, 1.00, 0.10, 1.30, 0.50, CellType::kTunnel, 0.0f);
   for (int i = 0; i < 6; ++i) {

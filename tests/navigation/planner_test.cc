@@ -75,6 +75,56 @@ void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerPar
   }
 }
 
+// Checks that each pose follows from the one before by the move it is labelled with.
+void ExpectMovesConsistent(const PlanResult& r) {
+  for (size_t i = 2; i < r.path.size(); ++i) {
+    const PathPose& a = r.path[i - 1];
+    const PathPose& b = r.path[i];
+    const Eigen::Vector2d d(b.pose_G.x - a.pose_G.x, b.pose_G.y - a.pose_G.y);
+    const Eigen::Vector2d ahead(std::cos(a.pose_G.yaw), std::sin(a.pose_G.yaw));
+    const double along = d.dot(ahead), across = ahead.x() * d.y() - ahead.y() * d.x();
+    const double turn = std::remainder(b.pose_G.yaw - a.pose_G.yaw, 2 * M_PI);
+    const std::string where = "pose " + std::to_string(i) + " (" + MoveName(b.move) + ")";
+    switch (b.move) {
+      case Move::kWalk:
+      case Move::kStairsUp:
+      case Move::kStairsDown:
+        EXPECT_EQ(b.posture, Posture::kUpright) << where;
+        EXPECT_NEAR(across, 0.0, 1e-9) << where;
+        EXPECT_GT(std::abs(along), 0.03) << where;
+        if (b.move != Move::kWalk) {
+          EXPECT_GT(along, 0.0) << where;  // steps are taken facing them
+        }
+        EXPECT_NEAR(turn, 0.0, 1e-9) << where;
+        break;
+      case Move::kSidestep:
+        EXPECT_EQ(b.posture, Posture::kUpright) << where;
+        EXPECT_NEAR(along, 0.0, 1e-9) << where;
+        EXPECT_GT(std::abs(across), 0.03) << where;
+        EXPECT_NEAR(turn, 0.0, 1e-9) << where;
+        break;
+      case Move::kTurn:
+        EXPECT_NEAR(d.norm(), 0.0, 1e-9) << where;
+        EXPECT_GT(std::abs(turn), 0.3) << where;
+        EXPECT_LT(std::abs(turn), 0.47) << where;
+        EXPECT_EQ(a.posture, b.posture) << where;
+        break;
+      case Move::kCrawl:
+        if (a.posture != b.posture) {
+          EXPECT_NEAR(d.norm(), 0.0, 1e-9) << where;
+        } else {
+          EXPECT_EQ(b.posture, Posture::kCrawling) << where;
+          EXPECT_NEAR(across, 0.0, 1e-9) << where;
+        }
+        EXPECT_NEAR(turn, 0.0, 1e-9) << where;
+        break;
+      case Move::kNone:
+        ADD_FAILURE() << where << ": only the start has no move";
+        break;
+    }
+  }
+}
+
 // y of the path where it crosses x (linear between poses).
 double YAtX(const PlanResult& r, double x) {
   for (size_t i = 1; i < r.path.size(); ++i) {
@@ -256,6 +306,7 @@ TEST(Planner, CrawlsUnderATableAcrossACorridor) {
   }
   EXPECT_GE(changes, 1);
   ExpectFootprintsClear(fog, r, p);
+  ExpectMovesConsistent(r);
 }
 
 TEST(Planner, NeverCrawlsWithoutATunnel) {
@@ -489,6 +540,7 @@ TEST(Planner, RunsTheCourseWithEveryMove) {
   EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
   EXPECT_GT(Count(r, Move::kWalk), 0) << Moves(r);
   ExpectFootprintsClear(course.fog, r, p);
+  ExpectMovesConsistent(r);
   // between the 8 cm block (y > 0.12) and the 20 cm block (y < -0.22): nearer the low one
   EXPECT_GT(YAtX(r, 0.55), -0.05);
 }
@@ -543,6 +595,13 @@ TEST(Planner, RunsTheStairsAndTableScenarioOnItsGroundTruthFog) {
   EXPECT_GT(Count(r, Move::kSidestep), 0) << Moves(r);
   EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
   ExpectFootprintsClear(fog, r, p);
+  ExpectMovesConsistent(r);
+}
+
+TEST(Planner, AbortsOnAFogWhoseArraysDoNotMatchItsWindow) {
+  Fog fog = FlatFog(20, 20, 0.04);
+  fog.height.pop_back();
+  EXPECT_DEATH(Plan(fog, {0.4, 0.4, 0.0}, {0.6, 0.4}, PlannerParams()), "do not match");
 }
 
 TEST(Planner, NamesMovesAndStates) {
