@@ -192,6 +192,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     }
   }
 
+  ComputeFloorHeights();
   ComputePermissions();
   ComputeCellCosts();
   memory_->Begin(NumStates());
@@ -299,8 +300,36 @@ void Lattice::ComputeCellCosts() {
   }
 }
 
+void Lattice::ComputeFloorHeights() {
+  // known floor heights; unknown cells take the height of the nearest known floor (breadth
+  // first over unknown cells), so a step hidden by an unknown cell is still seen as a step
+  const perception::GridWindow& w = fog_.window;
+  const size_t n = size_t(num_cells_);
+  floor_h_.assign(n, -std::numeric_limits<float>::infinity());
+  std::vector<int> frontier;
+  for (size_t i = 0; i < n; ++i) {
+    const CellType t = fog_.type[i];
+    if (t != CellType::kObstacle && t != CellType::kUnknown && std::isfinite(fog_.height[i])) {
+      floor_h_[i] = fog_.height[i];
+      frontier.push_back(int(i));
+    }
+  }
+  for (size_t next = 0; next < frontier.size(); ++next) {
+    const int i = frontier[next];
+    const int ix = i % w.size_x, iy = i / w.size_x;
+    const int nx[4] = {ix + 1, ix - 1, ix, ix}, ny[4] = {iy, iy, iy + 1, iy - 1};
+    for (int k = 0; k < 4; ++k) {
+      if (!w.Contains(nx[k], ny[k])) continue;
+      const size_t j = size_t(w.Index(nx[k], ny[k]));
+      if (fog_.type[j] != CellType::kUnknown || std::isfinite(floor_h_[j])) continue;
+      floor_h_[j] = floor_h_[size_t(i)];
+      frontier.push_back(int(j));
+    }
+  }
+}
+
 double Lattice::HeightStep(int from_cell, int to_cell) const {
-  const float a = fog_.height[size_t(from_cell)], b = fog_.height[size_t(to_cell)];
+  const float a = floor_h_[size_t(from_cell)], b = floor_h_[size_t(to_cell)];
   if (!std::isfinite(a) || !std::isfinite(b)) return 0.0;
   return double(b) - double(a);
 }
@@ -395,7 +424,7 @@ void Lattice::ComputeHeuristic() {
   for (size_t node = 0; node < 2 * n; ++node) {
     if (open[node]) relax(int(node), terminal_[node / 2]);
   }
-  const float* height = fog_.height.data();
+  const float* height = floor_h_.data();
   while (!queue.empty()) {
     const OpenEntry top = queue.Pop();
     const int node = top.state;
@@ -445,7 +474,7 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   const double maybe_d2 = maybe_blocked_d2_[q][size_t(cell)];
   if (maybe_d2 > out * out && (q == 0 || inside)) return true;
   const std::vector<uint8_t>& ok = ok_[q];
-  const float centre_h = fog_.height[size_t(cell)];
+  const float centre_h = floor_h_[size_t(cell)];
   for (const CellStep& o : footprint_[q][heading]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) {

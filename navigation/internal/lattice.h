@@ -109,10 +109,12 @@ class Lattice {
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
   bool InGoalRegion(int cell) const;
+  void ComputeFloorHeights();
   void ComputePermissions();
   void ComputeCellCosts();
   void ComputeTerminalCosts();
   void ComputeHeuristic();
+  // Floor height change from one cell to another (0 if either has no floor height).
   double HeightStep(int from_cell, int to_cell) const;
   // Central-difference floor height gradient at a cell (metres per cell), over the neighbours
   // that have a floor height; zero where it cannot be formed.
@@ -125,6 +127,7 @@ class Lattice {
   int num_cells_ = 0;
   double min_factor_ = 1.0;
 
+  std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
   // (border cells block a standing robot only off its own level)

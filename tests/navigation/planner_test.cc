@@ -391,6 +391,22 @@ TEST(Planner, RefusesAn8cmStep) {
   }
 }
 
+TEST(Planner, SeesAStepHiddenByUnknownCells) {
+  // a 6 cm tread whose riser the map did not see: the row of cells at the step is unknown
+  Fog fog = Treads({{1.4, 0.06f}}, 1.72);
+  FillBox(&fog, 1.36, 0.0, 1.44, 1.6, CellType::kUnknown, -INFINITY);
+  FillBox(&fog, 1.68, 0.0, 1.76, 1.6, CellType::kUnknown, -INFINITY);
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+  EXPECT_EQ(r.status, PlanStatus::kNoPath) << Moves(r);
+  // and a 3 cm one is climbed as a step, not walked over
+  Fog low = Treads({{1.4, 0.03f}}, 1.72);
+  FillBox(&low, 1.36, 0.0, 1.44, 1.6, CellType::kUnknown, -INFINITY);
+  const PlanResult climb = Plan(low, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+  ASSERT_EQ(climb.status, PlanStatus::kOk);
+  EXPECT_EQ(Count(climb, Move::kStairsUp), 1) << Moves(climb);
+}
+
 // A raised platform (10 cm) at the middle of open floor: its rim is border.
 Fog RaisedPlatform() {
   Fog fog = FlatFog(75, 75, 0.04);  // 3 m x 3 m
