@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -519,6 +520,32 @@ TEST(Planner, GoalOutsideTheWindowPlansToTheBestCellTowardIt) {
   EXPECT_FALSE(r.reaches_goal);
   EXPECT_GT(r.path.back().pose_G.x, 1.8);  // went round the wall to the far edge
   ExpectFootprintsClear(fog, r, p);
+}
+
+TEST(Planner, RunsTheCourseThroughMapNoise) {
+  // a map as stereo leaves it: holes of unknown cells and floor heights off by a few millimetres
+  internal::Course course = internal::PaperCourse();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (size_t i = 0; i < course.fog.type.size(); ++i) {
+    const CellType t = course.fog.type[i];
+    if (t != CellType::kFloor && t != CellType::kStairs && t != CellType::kTunnel) continue;
+    if (u(rng) < 0.05) {
+      course.fog.type[i] = CellType::kUnknown;
+      course.fog.height[i] = -INFINITY;
+    } else {
+      course.fog.height[i] += float(0.008 * (u(rng) - 0.5));
+    }
+  }
+  const PlannerParams p;
+  const PlanResult r = Plan(course.fog, course.start_G, course.goal_G, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  EXPECT_EQ(Count(r, Move::kStairsUp), 2) << Moves(r);
+  EXPECT_EQ(Count(r, Move::kStairsDown), 2) << Moves(r);
+  EXPECT_GT(Count(r, Move::kSidestep), 0) << Moves(r);
+  EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
+  ExpectFootprintsClear(course.fog, r, p);
+  ExpectMovesConsistent(r);
 }
 
 TEST(Planner, GoalBeyondTheWindowLeadsThroughTheCourseNotUpToItsHardPart) {
