@@ -145,17 +145,22 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   r.cost = best_total;
   r.expanded = expanded;
   r.path.reserve(chain.size() + 1);
-  r.path.push_back({start_G, Move::kNone, start_posture});
+  int start_ix = 0, start_iy = 0;
+  fog.window.CellOf(start_G.x, start_G.y, &start_ix, &start_iy);
+  r.path.push_back({start_G, Move::kNone, start_posture,
+                    lattice.FloorHeight(fog.window.Index(start_ix, start_iy))});
   r.length = seed.length;
   if (seed.move != Move::kNone) {
     r.path.push_back({lattice.PoseOf(chain.front()), seed.move,
-                      lattice.PostureOfState(chain.front())});
+                      lattice.PostureOfState(chain.front()),
+                      lattice.FloorHeight(lattice.CellOfState(chain.front()))});
   }
   for (size_t i = 1; i < chain.size(); ++i) {
     const perception::Pose2 pose = lattice.PoseOf(chain[i]);
     const perception::Pose2 prev = lattice.PoseOf(chain[i - 1]);
     r.length += std::hypot(pose.x - prev.x, pose.y - prev.y);
-    r.path.push_back({pose, move_in[size_t(chain[i])], lattice.PostureOfState(chain[i])});
+    r.path.push_back({pose, move_in[size_t(chain[i])], lattice.PostureOfState(chain[i]),
+                      lattice.FloorHeight(lattice.CellOfState(chain[i]))});
   }
   return r;
 }

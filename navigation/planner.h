@@ -126,11 +126,14 @@ enum class NoPathReason : uint8_t {
 const char* PlanStatusName(PlanStatus status);
 const char* NoPathReasonName(NoPathReason reason);
 
-// One pose of a path: where the robot is after `move`, in the grid frame, and its posture.
+// One pose of a path: where the robot is after `move`, in the grid frame, its posture, and the
+// floor height under its origin (metres, grid frame; an unknown cell has the nearest known
+// floor's, NaN if the map has none), so a step's rise is floor_z minus the previous pose's.
 struct PathPose {
   perception::Pose2 pose_G;
   Move move = Move::kNone;
   Posture posture = Posture::kUpright;
+  double floor_z = 0;
 };
 
 // The answer of Plan. When status is kOk, path[0] is the start pose (move kNone) and each

@@ -4,7 +4,9 @@
 #ifndef FOGNAV_NAVIGATION_INTERNAL_LATTICE_H_
 #define FOGNAV_NAVIGATION_INTERNAL_LATTICE_H_
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -81,6 +83,11 @@ class Lattice {
   int HeadingOfState(int s) const { return s % kNumHeadings; }
   Posture PostureOfState(int s) const { return Posture((s / kNumHeadings) % 2); }
   perception::Pose2 PoseOf(int s) const;
+  // Floor height of a cell (unknown cells: the nearest known floor's), NaN if none.
+  double FloorHeight(int cell) const {
+    const float h = floor_h_[size_t(cell)];
+    return std::isfinite(h) ? double(h) : std::numeric_limits<double>::quiet_NaN();
+  }
 
   // Whether the footprint of state s lies on cells that permit its posture (cached).
   bool Valid(int s);

@@ -346,6 +346,10 @@ TEST(Planner, ClimbsA3cmTreadUpThenDown) {
   EXPECT_LT(up - r.path.begin(), down - r.path.begin());
   EXPECT_NEAR(up->pose_G.x, 1.42, 0.05);
   EXPECT_NEAR(down->pose_G.x, 1.74, 0.05);
+  // the rise of each step from the poses' floor heights
+  EXPECT_NEAR(up->floor_z - (up - 1)->floor_z, 0.03, 1e-6);
+  EXPECT_NEAR(down->floor_z - (down - 1)->floor_z, -0.03, 1e-6);
+  EXPECT_NEAR(r.path.front().floor_z, 0.0, 1e-9);
   EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
 }
 
