@@ -165,4 +165,37 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
   return r;
 }
 
+std::vector<PathSegment> SegmentPath(const PlanResult& plan) {
+  std::vector<PathSegment> runs;
+  // +1 forward, -1 backward along the heading of the pose moved from, 0 for no translation
+  auto direction = [&](size_t i) {
+    const perception::Pose2& a = plan.path[i - 1].pose_G;
+    const perception::Pose2& b = plan.path[i].pose_G;
+    const double along = (b.x - a.x) * std::cos(a.yaw) + (b.y - a.y) * std::sin(a.yaw);
+    return along > 1e-9 ? 1 : along < -1e-9 ? -1 : 0;
+  };
+  for (size_t i = 1; i < plan.path.size(); ++i) {
+    const PathPose& q = plan.path[i];
+    const PathPose& prev = plan.path[i - 1];
+    const bool single = q.move == Move::kStairsUp || q.move == Move::kStairsDown ||
+                        q.posture != prev.posture;
+    bool extend = !runs.empty() && !single && runs.back().move == q.move &&
+                  runs.back().posture == q.posture;
+    if (extend) {
+      const PathSegment& run = runs.back();
+      const bool run_single = run.last - run.first == 1 &&
+                              (plan.path[size_t(run.last)].posture !=
+                                   plan.path[size_t(run.first)].posture ||
+                               run.move == Move::kStairsUp || run.move == Move::kStairsDown);
+      extend = !run_single && direction(i) == direction(size_t(run.first) + 1);
+    }
+    if (extend) {
+      runs.back().last = int(i);
+    } else {
+      runs.push_back({q.move, q.posture, int(i) - 1, int(i)});
+    }
+  }
+  return runs;
+}
+
 }  // namespace fognav::navigation

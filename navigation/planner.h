@@ -161,6 +161,20 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p,
                 Posture start_posture = Posture::kUpright);
 
+// A run of one kind of move along a path, from path[first] to path[last] (first < last): the
+// robot frame at path[first] holds the run's displacement as one motion command. Walks and
+// crawls split where the direction flips between forward and backward; each step up or down and
+// each posture change is a run of its own.
+struct PathSegment {
+  Move move = Move::kWalk;
+  Posture posture = Posture::kUpright;  // the posture at the end of the run
+  int first = 0;
+  int last = 0;
+};
+
+// The runs of moves of a plan's path, in order; empty without a path.
+std::vector<PathSegment> SegmentPath(const PlanResult& plan);
+
 // Pixel of the centre of FOG cell (ix, iy) in a map picture with `px_per_cell` pixels per cell:
 // x to the right, y up (row 0 holds the cells of largest iy).
 Eigen::Vector2i CellPixel(const perception::GridWindow& window, int px_per_cell, int ix, int iy);

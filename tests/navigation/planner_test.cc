@@ -651,6 +651,39 @@ TEST(Planner, AbortsOnAFogWhoseArraysDoNotMatchItsWindow) {
   EXPECT_DEATH(Plan(fog, {0.4, 0.4, 0.0}, {0.6, 0.4}, PlannerParams()), "do not match");
 }
 
+TEST(Planner, SegmentsThePathIntoRunsOfMoves) {
+  const internal::Course course = internal::PaperCourse();
+  const PlanResult r = Plan(course.fog, course.start_G, course.goal_G, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  const std::vector<PathSegment> runs = SegmentPath(r);
+  ASSERT_FALSE(runs.empty());
+  // the runs tile the path and each holds one kind of move
+  EXPECT_EQ(runs.front().first, 0);
+  EXPECT_EQ(runs.back().last, int(r.path.size()) - 1);
+  std::string kinds;
+  for (size_t k = 0; k < runs.size(); ++k) {
+    if (k > 0) {
+      EXPECT_EQ(runs[k].first, runs[k - 1].last);
+    }
+    ASSERT_LT(runs[k].first, runs[k].last);
+    for (int i = runs[k].first + 1; i <= runs[k].last; ++i) {
+      EXPECT_EQ(r.path[size_t(i)].move, runs[k].move);
+    }
+    if (runs[k].move == Move::kStairsUp || runs[k].move == Move::kStairsDown) {
+      EXPECT_EQ(runs[k].last - runs[k].first, 1);
+    }
+    kinds += std::string(MoveName(runs[k].move)) +
+             (runs[k].posture == Posture::kCrawling ? "* " : " ");
+  }
+  // walk between the blocks, up and down the stairs, side-step through the gap, crawl under
+  // the table
+  EXPECT_NE(kinds.find("stairs_up walk stairs_up walk stairs_down walk stairs_down"),
+            std::string::npos) << kinds;
+  EXPECT_NE(kinds.find("turn sidestep turn"), std::string::npos) << kinds;
+  EXPECT_NE(kinds.find("crawl* crawl*"), std::string::npos) << kinds;  // get down, crawl
+  EXPECT_TRUE(SegmentPath(PlanResult()).empty());
+}
+
 TEST(Planner, NamesMovesAndStates) {
   EXPECT_STREQ(MoveName(Move::kWalk), "walk");
   EXPECT_STREQ(MoveName(Move::kSidestep), "sidestep");
