@@ -138,9 +138,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
     Die("Plan: FOG type/height arrays do not match its window");
   }
-  min_factor_ = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor, p.stairs_factor,
-                          p.crawl_factor, p.crawl_factor * p.backward_factor});
-  if (!(min_factor_ > 0)) Die("Plan: move cost factors must be positive");
+  const double min_factor = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor,
+                                      p.stairs_factor, p.crawl_factor,
+                                      p.crawl_factor * p.backward_factor});
+  if (!(min_factor > 0)) Die("Plan: move cost factors must be positive");
   if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
         p.clearance_weight >= 0 && p.exit_factor >= 0)) {
     Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");

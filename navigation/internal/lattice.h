@@ -132,7 +132,6 @@ class Lattice {
   Eigen::Vector2d goal_G_;
   bool goal_in_window_ = false;
   int num_cells_ = 0;
-  double min_factor_ = 1.0;
 
   std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
