@@ -1,10 +1,13 @@
 #include "sim/render.h"
 
 #include <GL/osmesa.h>
+#include <dlfcn.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <string>
 
 namespace fognav::sim {
 namespace {
@@ -25,6 +28,37 @@ int BoxFace(const Eigen::Vector3d& p_B, const Eigen::Vector3d& half) {
     }
   }
   return best;
+}
+
+// OSMesa's entry points, opened at run time so that a machine without libOSMesa gets a clear
+// error (exit code 3) instead of a program that cannot start. MuJoCo opens the library by the
+// same name to load OpenGL, so both use one copy.
+struct OSMesaApi {
+  decltype(&OSMesaCreateContextExt) create = nullptr;
+  decltype(&OSMesaMakeCurrent) make_current = nullptr;
+  decltype(&OSMesaDestroyContext) destroy = nullptr;
+};
+
+const OSMesaApi& LoadOSMesa() {
+  static const OSMesaApi api = [] {
+    const char* override_name = std::getenv("FOGNAV_OSMESA");
+    const std::string name = override_name && *override_name ? override_name : "libOSMesa.so";
+    void* library = dlopen(name.c_str(), RTLD_NOW | RTLD_GLOBAL);
+    if (!library) library = dlopen((name + ".8").c_str(), RTLD_NOW | RTLD_GLOBAL);
+    OSMesaApi a;
+    if (!library) return a;
+    a.create = reinterpret_cast<decltype(a.create)>(dlsym(library, "OSMesaCreateContextExt"));
+    a.make_current = reinterpret_cast<decltype(a.make_current)>(dlsym(library, "OSMesaMakeCurrent"));
+    a.destroy = reinterpret_cast<decltype(a.destroy)>(dlsym(library, "OSMesaDestroyContext"));
+    return a;
+  }();
+  if (!api.create || !api.make_current || !api.destroy) {
+    const char* override_name = std::getenv("FOGNAV_OSMESA");
+    throw SimError(std::string("OSMesa: cannot load ") +
+                   (override_name && *override_name ? override_name : "libOSMesa.so") +
+                   " (install Debian's libosmesa6-dev, which provides it)");
+  }
+  return api;
 }
 
 }  // namespace
@@ -54,17 +88,18 @@ struct Renderer::Impl {
   ~Impl() {
     if (context_made) mjr_freeContext(&context);
     if (scene_made) mjv_freeScene(&scene);
-    if (osmesa) OSMesaDestroyContext(osmesa);
+    if (osmesa) LoadOSMesa().destroy(osmesa);
   }
 };
 
 Renderer::Renderer(const mjModel* m) : impl_(std::make_unique<Impl>()) {
   InstallMujocoErrorHandler();
-  impl_->osmesa = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
+  const OSMesaApi& osmesa = LoadOSMesa();
+  impl_->osmesa = osmesa.create(OSMESA_RGBA, 24, 8, 0, nullptr);
   if (!impl_->osmesa) throw SimError("OSMesa: could not create an off-screen OpenGL context");
   // the default framebuffer only hosts the context; views go to MuJoCo's offscreen buffer
   impl_->osmesa_buffer.resize(size_t(64) * 64 * 4);
-  if (!OSMesaMakeCurrent(impl_->osmesa, impl_->osmesa_buffer.data(), GL_UNSIGNED_BYTE, 64, 64)) {
+  if (!osmesa.make_current(impl_->osmesa, impl_->osmesa_buffer.data(), GL_UNSIGNED_BYTE, 64, 64)) {
     throw SimError("OSMesa: could not make the off-screen context current");
   }
   mjv_defaultScene(&impl_->scene);
@@ -89,7 +124,7 @@ RenderedView Renderer::Render(const mjModel* m, const mjData* d, const PinholeCa
     throw SimError("render: view " + std::to_string(w) + "x" + std::to_string(h) +
                    " is larger than the model's offscreen buffer");
   }
-  OSMesaMakeCurrent(impl_->osmesa, impl_->osmesa_buffer.data(), GL_UNSIGNED_BYTE, 64, 64);
+  LoadOSMesa().make_current(impl_->osmesa, impl_->osmesa_buffer.data(), GL_UNSIGNED_BYTE, 64, 64);
   mjr_setBuffer(mjFB_OFFSCREEN, &impl_->context);
   mjvScene& scn = impl_->scene;
 

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
 #include "sim/model.h"
@@ -40,6 +41,16 @@ int Render(const std::string& path, const std::string& out) {
   return kExitOk;
 }
 
+int Perceive(const std::string& path, const std::string& out, const std::string& depth,
+             bool quiet) {
+  auto scenario = fognav::scenarios::LoadScenario(path);
+  if (depth == "ideal") scenario.sensor.depth = fognav::scenarios::DepthMode::kIdeal;
+  if (depth == "stereo") scenario.sensor.depth = fognav::scenarios::DepthMode::kStereo;
+  fognav::scenarios::RunPerceive(scenario, out, quiet);
+  if (!quiet) std::cout << "wrote perception.json, frames/ and maps/ to " << out << "\n";
+  return kExitOk;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -54,6 +65,16 @@ int main(int argc, char** argv) {
   render->add_option("scenario", scenario_path, "scenario YAML file")->required();
   render->add_option("--out", out_dir, "output directory")->required();
 
+  std::string depth;
+  bool quiet = false;
+  auto* perceive = app.add_subcommand(
+      "perceive", "look around from the start pose, perceive every view, score against truth");
+  perceive->add_option("scenario", scenario_path, "scenario YAML file")->required();
+  perceive->add_option("--out", out_dir, "output directory")->required();
+  perceive->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
+      ->check(CLI::IsMember({"stereo", "ideal"}));
+  perceive->add_flag("--quiet", quiet, "print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -64,11 +85,16 @@ int main(int argc, char** argv) {
   try {
     if (*validate) return Validate(scenario_path);
     if (*render) return Render(scenario_path, out_dir);
+    if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
   } catch (const InputError& e) {
     std::cerr << "fognav: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const SimError& e) {
     std::cerr << "fognav: simulator: " << e.what() << "\n";
+    return kExitSimFailure;
+  } catch (const std::exception& e) {
+    // anything else (an output file that cannot be written mid-run, ...) stops the run
+    std::cerr << "fognav: could not run: " << e.what() << "\n";
     return kExitSimFailure;
   }
   return kExitBadInput;

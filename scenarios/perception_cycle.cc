@@ -1,0 +1,217 @@
+#include "scenarios/perception_cycle.h"
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "sim/controller.h"
+
+namespace fognav::scenarios {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+nlohmann::json ScoreJson(const perception::SegmentationScore& s) {
+  return {{"accuracy", s.accuracy}, {"coverage", s.coverage}, {"correct", s.correct},
+          {"over", s.over},         {"under", s.under},       {"missed", s.missed},
+          {"noise", s.noise},       {"planes", s.planes},     {"truth_surfaces", s.truth_surfaces}};
+}
+
+void MakeDirectory(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError(dir + ": cannot create the directory: " + error.message());
+}
+
+}  // namespace
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  auto mid = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), mid, values.end());
+  if (values.size() % 2) return *mid;
+  return 0.5 * (*mid + *std::max_element(values.begin(), mid));
+}
+
+perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
+                                     const sim::Humanoid& humanoid) {
+  perception::LabelImage world = surfaces;
+  for (int32_t& id : world.data) {
+    if (id >= 0 && humanoid.IsRobotGeom(sim::SurfaceGeom(id))) id = -1;
+  }
+  return world;
+}
+
+ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
+                        const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
+                        const Eigen::Isometry3d& X_GC,
+                        const std::vector<perception::OrientedBox>& body_G,
+                        perception::MapState* maps) {
+  ViewResult result;
+  // range data: stereo matching of the pair, or the depth buffer
+  auto start = Clock::now();
+  if (mode == DepthMode::kStereo) {
+    result.points = perception::StereoPointImage(view.left, view.right, view.intrinsics,
+                                                 params.stereo, &result.disparity);
+  } else {
+    result.points = perception::DepthPointImage(view.depth, view.intrinsics);
+  }
+  perception::LabelImage truth = WorldSurfaces(view.surfaces, humanoid);
+  perception::DepthImage truth_depth = view.depth;
+  if (params.subsample) {
+    result.points = perception::Subsample2x(result.points);
+    truth = perception::Subsample2x(truth);
+    truth_depth = perception::Subsample2x(truth_depth);
+  }
+  result.stereo_ms = MillisecondsSince(start);
+
+  // planes, scored against the surfaces the renderer saw
+  start = Clock::now();
+  result.planes = perception::SegmentPlanes(
+      result.points, mode == DepthMode::kStereo ? params.segment : params.segment_ideal);
+  result.segmentation_ms = MillisecondsSince(start);
+  result.segmentation = perception::ScoreSegmentation(result.planes.labels, truth, truth_depth);
+
+  // maps
+  start = Clock::now();
+  perception::MapInput input;
+  input.robot_G = robot_G;
+  input.p_GC = X_GC.translation();
+  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G);
+  perception::UpdateMaps(params.map, input, maps);
+  result.mapping_ms = MillisecondsSince(start);
+  return result;
+}
+
+perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow& window,
+                         const perception::FogParams& params, const Eigen::Isometry3d& X_GW) {
+  std::vector<perception::OrientedBox> solids_G;
+  // the floor as a thin box whose top face is z = 0
+  perception::OrientedBox floor;
+  floor.X_FB = X_GW * Eigen::Translation3d(scenario.floor_center.x(), scenario.floor_center.y(), -0.005);
+  floor.half_size = {scenario.floor_size.x() / 2, scenario.floor_size.y() / 2, 0.005};
+  solids_G.push_back(floor);
+  for (const Solid& solid : WorldSolids(scenario)) {
+    perception::OrientedBox box = solid.box;
+    box.X_FB = X_GW * box.X_FB;
+    solids_G.push_back(box);
+  }
+  return perception::GroundTruthFog(solids_G, window, params);
+}
+
+void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
+                     const std::string& prefix) {
+  MakeDirectory(dir);
+  WritePng(view.left, dir + "/" + prefix + "_left.png");
+  if (!result.disparity.empty()) {
+    WritePng(perception::DrawDisparity(result.disparity), dir + "/" + prefix + "_disparity.png");
+  }
+  WritePng(perception::DrawSegments(result.planes), dir + "/" + prefix + "_segments.png");
+}
+
+std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet) {
+  MakeDirectory(out_dir);
+  const PerceptionParams params;
+  sim::World world(MakeWorldSpec(scenario));
+  sim::Controller controller(world.model());
+  const sim::Humanoid& humanoid = controller.humanoid();
+  const mjModel* m = world.model();
+  mjData* d = world.data();
+  const sim::Pose2 start{scenario.start.x, scenario.start.y, scenario.start.yaw};
+  controller.Reset(start, 0.0, m, d);
+  sim::Renderer renderer(m);
+
+  perception::MapState maps;
+  nlohmann::json views = nlohmann::json::array();
+  std::vector<perception::SegmentationScore> scores;
+  std::vector<double> stereo_ms, segmentation_ms, mapping_ms;
+  const auto sweep = sim::LookAroundSweep();
+  for (size_t i = 0; i < sweep.size(); ++i) {
+    controller.MoveHead(sweep[i]);
+    controller.RunUntilIdle(m, d);
+    // the robot believes where odometry says; the camera and body from its joint angles
+    const sim::Pose2 believed = controller.believed_pose();
+    const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
+    Eigen::Isometry3d X_GR = Eigen::Translation3d(believed.x, believed.y, 0) *
+                             Eigen::AngleAxisd(believed.yaw, Eigen::Vector3d::UnitZ());
+    Eigen::Isometry3d X_GC = X_GR * sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft);
+    std::vector<perception::OrientedBox> body_G;
+    for (const sim::RobotBox& box : sim::RobotBodyBoxes(humanoid, m, d)) {
+      body_G.push_back({X_GR * box.X_RB, box.half_size});
+    }
+    StereoView view = RenderStereo(&renderer, world,
+                                   sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft),
+                                   scenario.sensor);
+    ViewResult result = PerceiveView(params, scenario.sensor.depth, view, humanoid, robot_G,
+                                     X_GC, body_G, &maps);
+    char prefix[32];
+    std::snprintf(prefix, sizeof(prefix), "view%02zu", i);
+    WriteViewFrames(view, result, out_dir + "/frames", prefix);
+    scores.push_back(result.segmentation);
+    stereo_ms.push_back(result.stereo_ms);
+    segmentation_ms.push_back(result.segmentation_ms);
+    mapping_ms.push_back(result.mapping_ms);
+    nlohmann::json v = {{"pan", sweep[i].pan},
+                        {"tilt", sweep[i].tilt},
+                        {"segmentation", ScoreJson(result.segmentation)},
+                        {"timing_ms",
+                         {{"stereo", result.stereo_ms},
+                          {"segmentation", result.segmentation_ms},
+                          {"mapping", result.mapping_ms}}}};
+    views.push_back(v);
+    if (!quiet) {
+      std::cerr << "view " << i + 1 << "/" << sweep.size() << ": " << result.planes.planes.size()
+                << " planes, accuracy " << result.segmentation.accuracy << "\n";
+    }
+  }
+
+  // maps against the ground truth of the world
+  const sim::Pose2 believed = controller.believed_pose();
+  const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
+  perception::Fog fog = perception::ComputeFog(params.map, maps);
+  perception::Fog truth = TruthFog(scenario, fog.window, params.map.fog);
+  perception::FogScore fog_score = perception::ScoreFog(fog, truth);
+  perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
+  WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
+
+  perception::SegmentationScore overall = perception::CombineScores(scores);
+  nlohmann::json confusion = nlohmann::json::object();
+  for (int t = 0; t < perception::kNumCellTypes; ++t) {
+    nlohmann::json row = nlohmann::json::object();
+    for (int e = 0; e < perception::kNumCellTypes; ++e) {
+      row[perception::CellTypeName(perception::CellType(e))] = fog_score.confusion[t][e];
+    }
+    confusion[perception::CellTypeName(perception::CellType(t))] = row;
+  }
+  nlohmann::json report = {
+      {"scenario", scenario.name},
+      {"depth", scenario.sensor.depth == DepthMode::kStereo ? "stereo" : "ideal"},
+      {"views", views},
+      {"segmentation", ScoreJson(overall)},
+      {"fog_accuracy", fog_score.accuracy},
+      {"fog_observed_cells", fog_score.observed},
+      {"fog_confusion", confusion},
+      {"floor_height_error",
+       {{"median", fog_score.height_error_median}, {"max", fog_score.height_error_max},
+        {"cells", fog_score.height_cells}}},
+      {"map_memory_bytes", maps.MemoryBytes()},
+      {"timing_ms",
+       {{"stereo", Median(stereo_ms)},
+        {"segmentation", Median(segmentation_ms)},
+        {"mapping", Median(mapping_ms)}}}};
+  std::string text = report.dump(2);
+  std::ofstream file(out_dir + "/perception.json");
+  file << text << "\n";
+  if (!file) throw InputError(out_dir + "/perception.json: could not write");
+  return text;
+}
+
+}  // namespace fognav::scenarios

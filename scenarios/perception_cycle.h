@@ -1,0 +1,69 @@
+// One perception cycle of the loop (DESIGN.md data flow), shared by `fognav perceive` and the
+// mission runner: stereo pair -> points -> planes -> labelled points -> maps, with the scores
+// of each view against the renderer's ground truth.
+#ifndef FOGNAV_SCENARIOS_PERCEPTION_CYCLE_H_
+#define FOGNAV_SCENARIOS_PERCEPTION_CYCLE_H_
+
+#include <string>
+#include <vector>
+
+#include "perception/mapping.h"
+#include "perception/segmentation.h"
+#include "scenarios/scenario.h"
+#include "scenarios/views.h"
+#include "sim/humanoid.h"
+
+namespace fognav::scenarios {
+
+struct PerceptionParams {
+  perception::StereoParams stereo;
+  perception::SegmentParams segment;         // for stereo depth (Table 1: C_max 15)
+  perception::SegmentParams segment_ideal = perception::PreciseRangeParams();  // C_max 10
+  bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
+  perception::LabelParams label;
+  perception::MapParams map;
+};
+
+// What one view gave, for frames and reports.
+struct ViewResult {
+  perception::PointImage points;        // camera frame (sub-sampled if params.subsample)
+  perception::Image<float> disparity;   // pixels, NaN where invalid; empty in ideal mode
+  perception::PlaneSet planes;
+  perception::SegmentationScore segmentation;
+  double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0;
+};
+
+// The robot's own surfaces are not part of the world: their ids become -1 (none).
+perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
+                                     const sim::Humanoid& humanoid);
+
+// Perceives one stereo view and updates the maps. X_GC is the left camera in the grid frame
+// and body_G the robot's body boxes in the grid frame, both from odometry and kinematics.
+ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
+                        const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
+                        const Eigen::Isometry3d& X_GC,
+                        const std::vector<perception::OrientedBox>& body_G,
+                        perception::MapState* maps);
+
+// The ground-truth FOG of the scenario's world in the window; the grid frame is the world frame
+// shifted by `X_GW` (identity while odometry has no error).
+perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow& window,
+                         const perception::FogParams& params,
+                         const Eigen::Isometry3d& X_GW = Eigen::Isometry3d::Identity());
+
+// Writes frames/<prefix>_left.png, _disparity.png (if any) and _segments.png into dir.
+void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
+                     const std::string& prefix);
+
+// Median of a list (0 if empty).
+double Median(std::vector<double> values);
+
+// `fognav perceive`: keeps the robot at its start pose, runs the look-around head sweep,
+// perceives every view and writes DIR/perception.json, DIR/frames/ and DIR/maps/.
+// Returns the JSON text it wrote. Throws InputError for an unwritable DIR, SimError if the
+// simulator cannot run.
+std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet);
+
+}  // namespace fognav::scenarios
+
+#endif  // FOGNAV_SCENARIOS_PERCEPTION_CYCLE_H_

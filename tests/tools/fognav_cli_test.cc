@@ -1,0 +1,86 @@
+// Runs the fognav program and checks its exit codes and messages (DESIGN.md command line).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+Outcome RunFognav(const std::string& arguments, const std::string& environment = "") {
+  std::string command =
+      "DISPLAY= " + environment + " " + std::string(FOGNAV_BINARY) + " " + arguments + " 2>&1";
+  Outcome outcome;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) outcome.output.append(buffer, n);
+  int status = pclose(pipe);
+  outcome.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return outcome;
+}
+
+std::string TempFile(const std::string& name, const std::string& text) {
+  std::string path = (std::filesystem::temp_directory_path() / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(FognavCli, ValidateAcceptsTheCourse) {
+  Outcome o = RunFognav("validate scenarios/stairs_and_table.yaml");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("stairs_and_table: 11 objects"), std::string::npos) << o.output;
+}
+
+TEST(FognavCli, ValidateRejectsABadFileWithExitCode2AndOneLine) {
+  std::string path = TempFile("fognav_cli_bad.yaml",
+                              "name: bad\nrobot: {start: [0, 0, 0]}\ngoal: {position: [1, 0]}\n"
+                              "world: {floor: [4, 2], floor_centre: [0, 0]}\n");
+  Outcome o = RunFognav("validate " + path);
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_EQ(o.output, "fognav: " + path +
+                          ":4: world.floor_centre: unknown key (expected one of: floor, "
+                          "floor_center, objects)\n");
+}
+
+TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
+  EXPECT_EQ(RunFognav("validate /nonexistent.yaml").exit_code, 2);
+  EXPECT_EQ(RunFognav("render scenarios/stairs_and_table.yaml").exit_code, 2);  // no --out
+  EXPECT_EQ(RunFognav("fly").exit_code, 2);
+  EXPECT_EQ(RunFognav("perceive scenarios/stairs_and_table.yaml --out /tmp/x --depth lidar").exit_code, 2);
+}
+
+TEST(FognavCli, UnwritableOutputIsExitCode2) {
+  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /proc/fognav_out");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/proc/fognav_out"), std::string::npos) << o.output;
+}
+
+TEST(FognavCli, NoOSMesaIsExitCode3) {
+  // as on a machine without libOSMesa: the simulator cannot render
+  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /tmp/fognav_cli_no_gl",
+                  "FOGNAV_OSMESA=/nonexistent/libOSMesa.so");
+  EXPECT_EQ(o.exit_code, 3) << o.output;
+  EXPECT_NE(o.output.find("fognav: simulator: OSMesa: cannot load /nonexistent/libOSMesa.so"),
+            std::string::npos)
+      << o.output;
+}
+
+TEST(FognavCli, RenderWritesTheViews) {
+  std::string dir = (std::filesystem::temp_directory_path() / "fognav_cli_render_ok").string();
+  std::filesystem::remove_all(dir);
+  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out " + dir);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  for (const char* file : {"left.png", "right.png", "depth.png", "surfaces.png",
+                           "intrinsics.json", "overview.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
+  }
+}
+
+}  // namespace
