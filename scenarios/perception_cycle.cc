@@ -41,6 +41,12 @@ double Median(std::vector<double> values) {
   return 0.5 * (*mid + *std::max_element(values.begin(), mid));
 }
 
+std::vector<sim::HeadAngles> StartSweep() {
+  sim::LookAroundParams params;
+  params.tilts.push_back(0.15);
+  return sim::LookAroundSweep(params);
+}
+
 perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
                                      const sim::Humanoid& humanoid) {
   perception::LabelImage world = surfaces;
@@ -133,7 +139,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   nlohmann::json views = nlohmann::json::array();
   std::vector<perception::SegmentationScore> scores;
   std::vector<double> stereo_ms, segmentation_ms, mapping_ms;
-  const auto sweep = sim::LookAroundSweep();
+  const auto sweep = StartSweep();
   for (size_t i = 0; i < sweep.size(); ++i) {
     controller.MoveHead(sweep[i]);
     controller.RunUntilIdle(m, d);

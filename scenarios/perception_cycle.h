@@ -11,6 +11,7 @@
 #include "perception/segmentation.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
+#include "sim/controller.h"
 #include "sim/humanoid.h"
 
 namespace fognav::scenarios {
@@ -32,6 +33,10 @@ struct ViewResult {
   perception::SegmentationScore segmentation;
   double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0;
 };
+
+// The look-around head sweep a mission starts with: the controller's near and middle rings plus
+// a near-level ring, so that undersides above the eyes (a table to crawl under) are seen.
+std::vector<sim::HeadAngles> StartSweep();
 
 // The robot's own surfaces are not part of the world: their ids become -1 (none).
 perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,

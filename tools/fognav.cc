@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scenarios/mission.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
@@ -14,6 +15,7 @@
 namespace {
 
 constexpr int kExitOk = 0;
+constexpr int kExitExpectationFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSimFailure = 3;
 
@@ -51,6 +53,23 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
   return kExitOk;
 }
 
+int Run(const std::string& path, const std::string& out, int dump_every, bool quiet) {
+  auto scenario = fognav::scenarios::LoadScenario(path);
+  fognav::scenarios::MissionOptions options;
+  options.out_dir = out;
+  options.dump_every = dump_every;
+  options.quiet = quiet;
+  auto outcome = fognav::scenarios::RunMission(scenario, options);
+  if (!quiet) {
+    std::cout << scenario.name << ": " << (outcome.success ? "success" : "FAILED")
+              << (outcome.reached_goal ? ", goal reached" : ", goal not reached")
+              << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
+              << "report: " << out << "/report.json, trajectory: " << out
+              << "/trajectory.csv, frames: " << out << "/frames/, maps: " << out << "/maps/\n";
+  }
+  return outcome.success ? kExitOk : kExitExpectationFailed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,6 +86,14 @@ int main(int argc, char** argv) {
 
   std::string depth;
   bool quiet = false;
+  int dump_every = 0;
+  auto* run = app.add_subcommand("run", "run a mission headless");
+  run->add_option("scenario", scenario_path, "scenario YAML file")->required();
+  run->add_option("--out", out_dir, "output directory")->required();
+  run->add_option("--dump-every", dump_every, "write frames and maps every N cycles")
+      ->check(CLI::NonNegativeNumber);
+  run->add_flag("--quiet", quiet, "print nothing but errors");
+
   auto* perceive = app.add_subcommand(
       "perceive", "look around from the start pose, perceive every view, score against truth");
   perceive->add_option("scenario", scenario_path, "scenario YAML file")->required();
@@ -84,6 +111,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return Validate(scenario_path);
+    if (*run) return Run(scenario_path, out_dir, dump_every, quiet);
     if (*render) return Render(scenario_path, out_dir);
     if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
   } catch (const InputError& e) {

@@ -1,0 +1,370 @@
+#include "scenarios/mission.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "navigation/planner.h"
+#include "scenarios/perception_cycle.h"
+#include "sim/controller.h"
+
+namespace fognav::scenarios {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+namespace nav = navigation;
+
+double Ms(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+// displacement (dx, dy in the frame of `from`, dyaw) from one planar pose to another
+Eigen::Vector3d Relative(const perception::Pose2& from, const perception::Pose2& to) {
+  double c = std::cos(from.yaw), s = std::sin(from.yaw);
+  double dx = to.x - from.x, dy = to.y - from.y;
+  return {c * dx + s * dy, -s * dx + c * dy, WrapAngle(to.yaw - from.yaw)};
+}
+
+Eigen::Isometry3d Planar(const perception::Pose2& p, double z) {
+  return Eigen::Translation3d(p.x, p.y, z) * Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ());
+}
+
+perception::Pose2 ToPerception(const sim::Pose2& p) { return {p.x, p.y, p.yaw}; }
+
+// how far one motion command may carry the robot before it re-plans (about two strides)
+struct ExecutionLimits {
+  double walk = 0.16;
+  double sidestep = 0.10;
+  double crawl = 0.12;
+};
+
+// head views of the cycles while moving: ahead and to both sides of the path, near and far
+const std::vector<sim::HeadAngles> kCycleViews = {
+    {0.0, 0.75}, {0.45, 0.6}, {0.0, 0.4}, {-0.45, 0.6}, {0.0, 0.15}};
+
+}  // namespace
+
+MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options) {
+  const auto wall_start = Clock::now();
+  std::error_code error;
+  std::filesystem::create_directories(options.out_dir, error);
+  if (error) throw InputError(options.out_dir + ": cannot create the output directory: " + error.message());
+  std::ofstream trajectory(options.out_dir + "/trajectory.csv");
+  if (!trajectory) throw InputError(options.out_dir + "/trajectory.csv: cannot write");
+  trajectory << "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n";
+  const bool progress = !options.quiet && isatty(STDERR_FILENO);
+
+  // world, robot, renderer
+  const PerceptionParams perception_params;
+  nav::PlannerParams planner_params;
+  // plan to within half the tolerance, so the robot ends inside it despite odometry and cells
+  planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
+  const ExecutionLimits limits;
+  sim::World world(MakeWorldSpec(scenario));
+  const mjModel* m = world.model();
+  mjData* d = world.data();
+  sim::ControllerParams controller_params;
+  controller_params.odometry_noise_xy = scenario.odometry_noise_xy;
+  controller_params.odometry_noise_yaw = scenario.odometry_noise_yaw;
+  controller_params.seed = unsigned(scenario.seed);
+  sim::Controller controller(m, controller_params);
+  const sim::Humanoid& humanoid = controller.humanoid();
+  controller.Reset({scenario.start.x, scenario.start.y, scenario.start.yaw}, 0.0, m, d);
+  sim::Renderer renderer(m);
+
+  perception::MapState maps;
+  double believed_floor_z = 0;  // odometry: the sum of the commanded rises
+  std::map<std::string, int> actions;
+  for (const auto& name : ActionNames()) actions[name] = 0;
+  std::map<std::string, std::vector<double>> timing;
+  double path_length = 0;
+  perception::Pose2 last_true = ToPerception(controller.TruePose(d));
+  std::string current_move = "look";
+  int cycle = 0;
+  int last_step_logged = 0;
+
+  // logs every footstep and accumulates the ground-truth path
+  auto on_tick = [&](int) {
+    if (controller.steps() == last_step_logged) return;
+    last_step_logged = controller.steps();
+    perception::Pose2 t = ToPerception(controller.TruePose(d));
+    perception::Pose2 o = ToPerception(controller.believed_pose());
+    path_length += std::hypot(t.x - last_true.x, t.y - last_true.y);
+    last_true = t;
+    char row[256];
+    std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%s\n", controller.steps(),
+                  controller.ticks(), t.x, t.y, t.yaw, o.x, o.y, o.yaw, current_move.c_str());
+    trajectory << row;
+  };
+  auto run_controller = [&]() {
+    auto start = Clock::now();
+    controller.RunUntilIdle(m, d, on_tick);
+    timing["control"].push_back(Ms(start));
+  };
+
+  // one perception cycle at the head's current pose
+  ViewResult last_view;
+  StereoView last_stereo;
+  auto perceive = [&]() {
+    const perception::Pose2 robot_G = ToPerception(controller.believed_pose());
+    const Eigen::Isometry3d X_GR = Planar(robot_G, believed_floor_z);
+    const Eigen::Isometry3d X_GC = X_GR * sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft);
+    std::vector<perception::OrientedBox> body_G;
+    for (const sim::RobotBox& box : sim::RobotBodyBoxes(humanoid, m, d)) {
+      body_G.push_back({X_GR * box.X_RB, box.half_size});
+    }
+    auto start = Clock::now();
+    last_stereo = RenderStereo(&renderer, world, sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft),
+                               scenario.sensor);
+    timing["render"].push_back(Ms(start));
+    last_view = PerceiveView(perception_params, scenario.sensor.depth, last_stereo, humanoid,
+                             robot_G, X_GC, body_G, &maps);
+    timing["stereo"].push_back(last_view.stereo_ms);
+    timing["segmentation"].push_back(last_view.segmentation_ms);
+    timing["mapping"].push_back(last_view.mapping_ms);
+  };
+  auto look_around = [&]() {
+    current_move = "look";
+    for (const sim::HeadAngles& view : StartSweep()) {
+      controller.MoveHead(view);
+      run_controller();
+      perceive();
+    }
+  };
+
+  auto true_goal_distance = [&]() {
+    sim::Pose2 t = controller.TruePose(d);
+    return std::hypot(t.x - scenario.goal.x(), t.y - scenario.goal.y());
+  };
+
+  // the closed loop
+  std::string failure;
+  nav::PlanResult plan;
+  perception::Fog fog;
+  look_around();
+  perception::Pose2 looked_at = ToPerception(controller.believed_pose());
+  bool just_looked = true;
+  while (true) {
+    if (true_goal_distance() <= scenario.goal_tolerance) break;
+    if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
+      failure = "collision";
+      break;
+    }
+    if (cycle >= scenario.max_cycles || controller.steps() >= scenario.max_steps) {
+      failure = "timeout";
+      break;
+    }
+    ++cycle;
+
+    // plan from where odometry says the robot is
+    const perception::Pose2 believed = ToPerception(controller.believed_pose());
+    fog = perception::ComputeFog(perception_params.map, maps);
+    auto start = Clock::now();
+    const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
+                                     ? nav::Posture::kCrawling
+                                     : nav::Posture::kUpright;
+    plan = nav::Plan(fog, believed, scenario.goal, planner_params, posture);
+    timing["planning"].push_back(Ms(start));
+    if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
+      if (just_looked) {
+        failure = "no_path";
+        break;
+      }
+      look_around();
+      looked_at = believed;
+      just_looked = true;
+      continue;
+    }
+
+    // the first run of moves, cut to about two strides
+    const std::vector<nav::PathSegment> segments = nav::SegmentPath(plan);
+    const nav::PathSegment& run = segments.front();
+    int target = run.last;
+    double limit = run.move == nav::Move::kWalk       ? limits.walk
+                   : run.move == nav::Move::kSidestep ? limits.sidestep
+                   : run.move == nav::Move::kCrawl    ? limits.crawl
+                                                      : 1e9;
+    double travelled = 0;
+    for (int k = run.first + 1; k <= run.last; ++k) {
+      const auto& a = plan.path[k - 1].pose_G;
+      const auto& b = plan.path[k].pose_G;
+      travelled += std::hypot(b.x - a.x, b.y - a.y);
+      if (travelled >= limit) {
+        target = k;
+        break;
+      }
+    }
+    const nav::PathPose& goal_pose = plan.path[target];
+    const Eigen::Vector3d delta = Relative(believed, goal_pose.pose_G);
+    current_move = nav::MoveName(run.move);
+    const sim::StepLimits& step_limits = controller_params.limits;
+    switch (run.move) {
+      case nav::Move::kStairsUp:
+      case nav::Move::kStairsDown: {
+        double dz = std::isfinite(goal_pose.floor_z) ? goal_pose.floor_z - believed_floor_z : 0.0;
+        dz = std::clamp(dz, -step_limits.max_climb_height, step_limits.max_climb_height);
+        double dx = std::clamp(delta.x(), 0.02, step_limits.max_climb_forward);
+        if (std::abs(delta.z()) > 0.05 || std::abs(delta.y()) > 0.02) {
+          controller.Walk(0, delta.y(), delta.z());  // face the step first
+        }
+        controller.StepOnto(dx, dz);
+        believed_floor_z += dz;
+        break;
+      }
+      case nav::Move::kCrawl:
+        if (run.posture == nav::Posture::kCrawling && controller.mode() == sim::Mode::kStanding) {
+          controller.GetDown();
+        } else if (run.posture == nav::Posture::kUpright &&
+                   controller.mode() == sim::Mode::kCrawling) {
+          controller.GetUp();
+        } else {
+          controller.Crawl(delta.x(), delta.z());
+        }
+        break;
+      case nav::Move::kTurn:
+        if (controller.mode() == sim::Mode::kCrawling) {
+          controller.Crawl(0, delta.z());
+        } else {
+          controller.Walk(0, 0, delta.z());
+        }
+        break;
+      default:
+        controller.Walk(delta.x(), delta.y(), delta.z());
+        break;
+    }
+    ++actions[current_move];
+    run_controller();
+
+    // look where the robot is going, then perceive
+    controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
+    run_controller();
+    perceive();
+    just_looked = false;
+
+    // a plan into cells never seen: look around once the robot has moved on
+    int ix, iy;
+    fog.window.CellOf(goal_pose.pose_G.x, goal_pose.pose_G.y, &ix, &iy);
+    const perception::Pose2 now = ToPerception(controller.believed_pose());
+    if (fog.window.Contains(ix, iy) && fog.TypeAt(ix, iy) == perception::CellType::kUnknown &&
+        std::hypot(now.x - looked_at.x, now.y - looked_at.y) > 0.5) {
+      look_around();
+      looked_at = now;
+      just_looked = true;
+    }
+
+    if (options.dump_every > 0 && cycle % options.dump_every == 0) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "cycle%04d", cycle);
+      WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", name);
+      std::filesystem::create_directories(options.out_dir + "/maps");
+      WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
+               options.out_dir + "/maps/" + name + "_plan.png");
+    }
+    if (progress) {
+      std::fprintf(stderr, "\rcycle %4d  goal %5.2f m  %-11s  %6.1f s", cycle, true_goal_distance(),
+                   current_move.c_str(), Ms(wall_start) / 1000);
+    }
+  }
+  if (progress) std::fprintf(stderr, "\n");
+
+  // scores against the ground truth
+  const double goal_distance = true_goal_distance();
+  const bool reached_goal = goal_distance <= scenario.goal_tolerance;
+  const perception::Pose2 believed = ToPerception(controller.believed_pose());
+  const perception::Pose2 truth_pose = ToPerception(controller.TruePose(d));
+  const Eigen::Isometry3d X_GW = Planar(believed, 0) * Planar(truth_pose, 0).inverse();
+  fog = perception::ComputeFog(perception_params.map, maps);
+  const perception::Fog truth_fog = TruthFog(scenario, fog.window, perception_params.map.fog, X_GW);
+  const perception::FogScore fog_score = perception::ScoreFog(fog, truth_fog);
+
+  // the planner's path on the ground-truth FOG of the whole floor, for SPL
+  perception::GridWindow whole;
+  whole.resolution = perception_params.map.grid.resolution;
+  Eigen::Vector2d lo = scenario.floor_center - scenario.floor_size / 2;
+  whole.origin_ix = int(std::floor(lo.x() / whole.resolution)) - 2;
+  whole.origin_iy = int(std::floor(lo.y() / whole.resolution)) - 2;
+  whole.size_x = int(std::ceil(scenario.floor_size.x() / whole.resolution)) + 4;
+  whole.size_y = int(std::ceil(scenario.floor_size.y() / whole.resolution)) + 4;
+  const perception::Fog world_fog = TruthFog(scenario, whole, perception_params.map.fog);
+  const nav::PlanResult optimal = nav::Plan(world_fog, scenario.start, scenario.goal, planner_params);
+  const double optimal_length =
+      optimal.status == nav::PlanStatus::kOk && optimal.reaches_goal ? optimal.length : 0.0;
+  const double spl = reached_goal && optimal_length > 0
+                         ? optimal_length / std::max(path_length, optimal_length)
+                         : 0.0;
+
+  // expectations
+  bool success = true;
+  const Expectations& expect = scenario.expect;
+  if (expect.reach_goal && *expect.reach_goal != reached_goal) success = false;
+  for (const auto& action : expect.actions_used) success = success && actions[action] > 0;
+  if (expect.no_collision.value_or(false) && !controller.collisions().empty()) success = false;
+  if (expect.failure) {
+    success = success && failure == *expect.failure;
+  } else if (!failure.empty() && !(failure == "collision" && !expect.no_collision.value_or(false))) {
+    success = false;
+  }
+
+  // pictures of the end state
+  std::filesystem::create_directories(options.out_dir + "/frames");
+  WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", "final");
+  perception::WriteMapPictures(options.out_dir + "/maps", fog, maps, perception_params.map, believed);
+  WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
+           options.out_dir + "/maps/final_plan.png");
+  WritePng(perception::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
+  WritePng(nav::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),
+           options.out_dir + "/maps/optimal_plan.png");
+
+  nlohmann::json collisions = nlohmann::json::array();
+  for (const sim::Collision& c : controller.collisions()) {
+    collisions.push_back({{"tick", c.tick}, {"robot", c.robot_name}, {"world", c.world_name},
+                          {"depth", c.depth}});
+  }
+  nlohmann::json timing_ms = nlohmann::json::object();
+  for (const char* stage : {"render", "stereo", "segmentation", "mapping", "planning", "control"}) {
+    timing_ms[stage] = Median(timing[stage]);
+  }
+  nlohmann::json report = {
+      {"scenario", scenario.name},
+      {"success", success},
+      {"reached_goal", reached_goal},
+      {"goal_distance", goal_distance},
+      {"failure", failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(failure)},
+      {"cycles", cycle},
+      {"steps", controller.steps()},
+      {"actions", actions},
+      {"collisions", controller.collisions().size()},
+      {"collision_list", collisions},
+      {"path_length", path_length},
+      {"optimal_path_length", optimal_length},
+      {"spl", spl},
+      {"fog_accuracy", fog_score.accuracy},
+      {"floor_height_error",
+       {{"median", fog_score.height_error_median}, {"max", fog_score.height_error_max}}},
+      {"final_pose", {{"true", {truth_pose.x, truth_pose.y, truth_pose.yaw}},
+                      {"odometry", {believed.x, believed.y, believed.yaw}}}},
+      {"wall_time_s", Ms(wall_start) / 1000},
+      {"timing_ms", timing_ms}};
+  MissionOutcome outcome;
+  outcome.success = success;
+  outcome.reached_goal = reached_goal;
+  outcome.failure = failure;
+  outcome.report_json = report.dump(2);
+  std::ofstream file(options.out_dir + "/report.json");
+  file << outcome.report_json << "\n";
+  if (!file) throw InputError(options.out_dir + "/report.json: could not write");
+  return outcome;
+}
+
+}  // namespace fognav::scenarios

@@ -1,0 +1,34 @@
+// The closed loop (DESIGN.md): look around, then each cycle render the head's stereo pair,
+// perceive, update the maps with the odometry pose, plan on the FOG, execute the first moves
+// with the stepping controller; until the goal is reached, no path remains, a collision occurs
+// (when expected not to) or the limits are hit.
+#ifndef FOGNAV_SCENARIOS_MISSION_H_
+#define FOGNAV_SCENARIOS_MISSION_H_
+
+#include <string>
+
+#include "scenarios/scenario.h"
+
+namespace fognav::scenarios {
+
+struct MissionOptions {
+  std::string out_dir;  // report.json, trajectory.csv, frames/, maps/
+  int dump_every = 0;   // write frames and maps every N cycles (0: only at the end)
+  bool quiet = false;   // no progress line and no summary
+};
+
+// What a mission ended with; the full figures are in the report.
+struct MissionOutcome {
+  bool success = false;        // every expectation of the scenario held
+  bool reached_goal = false;   // ground truth within the goal tolerance
+  std::string failure;         // "" or no_path, collision, timeout
+  std::string report_json;     // the text written to report.json
+};
+
+// Runs the mission. Throws InputError if the output cannot be written, sim::SimError if the
+// simulator cannot run.
+MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options);
+
+}  // namespace fognav::scenarios
+
+#endif  // FOGNAV_SCENARIOS_MISSION_H_
