@@ -52,6 +52,9 @@ struct ExecutionLimits {
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
 const std::vector<sim::HeadAngles> kCycleViews = {
     {0.0, 0.75}, {0.45, 0.6}, {0.0, 0.4}, {-0.45, 0.6}, {0.0, 0.15}};
+// while crawling: the camera's elevation above the horizon (rad), up to see an underside
+// overhead, down to see the floor ahead
+const std::vector<double> kCrawlElevations = {0.2, -0.35};
 
 }  // namespace
 
@@ -247,7 +250,17 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     run_controller();
 
     // look where the robot is going, then perceive
-    controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
+    if (controller.mode() == sim::Mode::kCrawling) {
+      // the neck tilt that gives the wanted elevation, from the camera's kinematic pose
+      const Eigen::Vector3d forward_R =
+          sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).rotation().col(2);
+      const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
+      const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
+      const double wanted = kCrawlElevations[size_t(cycle) % kCrawlElevations.size()];
+      controller.MoveHead({0.0, tilt + elevation - wanted});
+    } else {
+      controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
+    }
     run_controller();
     perceive();
     just_looked = false;
