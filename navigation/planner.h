@@ -21,8 +21,10 @@ enum class Posture : uint8_t { kUpright = 0, kCrawling = 1 };
 
 // The move that brings the robot to a path pose. kNone labels only the first pose (the start).
 // kWalk is a step forward or backward, kSidestep one along the shoulders' axis, kTurn a turn in
-// place to the next lattice heading (standing or crawling); kStairsUp / kStairsDown is a step
-// forward onto a cell whose floor is more than h_floor (and at most h_stairs) higher / lower.
+// place to the next lattice heading (standing or crawling); kStairsUp / kStairsDown is one
+// step forward from a standing pose on one level to a standing pose on a floor more than h_floor
+// (and at most h_stairs) higher / lower, over as many lattice cells as that takes (at most
+// max_step_length): the pose's displacement from the previous one is the whole step.
 // kCrawl is a crawl forward or backward, or a posture change in place, where the pose's posture
 // says whether the robot got down (kCrawling) or up (kUpright).
 enum class Move : uint8_t { kNone = 0, kWalk, kSidestep, kTurn, kStairsUp, kStairsDown, kCrawl };
@@ -52,11 +54,20 @@ inline constexpr int kNumHeadings = 16;
 // 0.10 m ahead of the origin (the humanoid on knees and hands, head raised, toes behind).
 // The shipped humanoid (models/humanoid.xml) is 0.234 m across the arms and 0.11 m long at the
 // soles, inside these sizes.
-// What may lie under a footprint: standing, floor, stairs and unknown cells, and border cells
-// within h_floor of the floor under the robot's origin (the paper's border marks both sides of a
-// drop; the robot may stand at the foot of a wall or block or on the rim of a platform, but its
-// footprint never spans the drop); crawling, tunnel cells and floor or unknown cells near them.
-// Obstacle cells never.
+// What may lie under a footprint: standing, unknown cells and floor, stairs and border cells
+// whose height is within h_floor of the floor under the robot's origin (unknown origins take the
+// nearest known floor's), so a standing robot is always level: its feet never reach onto another
+// tread, and it may stand at the foot of a wall or block or on the rim of a platform (the
+// paper's border marks both sides of a drop) but never across the drop; crawling, tunnel cells
+// and floor or unknown cells near them. Obstacle cells never.
+// Moves: walks, side-steps and crawls go to a neighbouring cell whose floor is within h_floor.
+// A step up or down goes forward along the heading, facing the floor's height gradient, by the
+// fewest lattice steps (at most max_step_length) that lead from a standing pose on floor h0 to
+// one on floor h1 with h_floor < |h1 - h0| <= h_stairs; the poses it passes need not be
+// allowed, but no cell its footprint sweeps may be an obstacle or tunnel cell or lie more than
+// h_floor above or below both levels. So on 4 cm cells a riser across the heading takes a step
+// of 0.12 m, and a tread shallower than the footprint is stepped over only if the step over it
+// fits in max_step_length (with the defaults it never does: no path).
 struct PlannerParams {
   // robot body, metres
   double shoulder_width = 0.26;  // upright extent across the heading
@@ -69,6 +80,9 @@ struct PlannerParams {
   // terrain limits (paper Section 6), metres
   double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
   double h_stairs = 0.05;   // largest step the robot climbs; larger changes are never crossed
+  // longest step up or down, from standing pose to standing pose (the controller's
+  // max_climb_forward), metres
+  double max_step_length = 0.16;
   // a step up or down is taken facing it: the heading may differ from the direction of the
   // floor's height gradient there by at most this angle, radians
   double max_stairs_heading_error = 0.35;
@@ -82,7 +96,8 @@ struct PlannerParams {
   double walk_factor = 1.0;         // forward walking
   double backward_factor = 1.5;     // walking backwards
   double sidestep_factor = 1.6;     // stepping along the shoulders' axis
-  double stairs_factor = 2.0;       // any translation starting or ending on a stairs cell
+  double stairs_factor = 2.0;       // steps up and down, and walks starting or ending on a
+                                    // stairs cell
   double crawl_factor = 3.0;        // crawling forward (backward: times backward_factor)
   double turn_cost_per_rad = 0.15;  // turning in place, metres-equivalent per radian
                                     // (times crawl_factor when crawling)
@@ -128,7 +143,8 @@ const char* NoPathReasonName(NoPathReason reason);
 
 // One pose of a path: where the robot is after `move`, in the grid frame, its posture, and the
 // floor height under its origin (metres, grid frame; an unknown cell has the nearest known
-// floor's, NaN if the map has none), so a step's rise is floor_z minus the previous pose's.
+// floor's, NaN if the map has none), so a step's rise is floor_z minus the previous pose's (for
+// a step up or down, the new level h1 minus the old one h0, over the whole displacement).
 struct PathPose {
   perception::Pose2 pose_G;
   Move move = Move::kNone;

@@ -147,6 +147,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
   }
   if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
+  if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   goal_in_window_ = w.Contains(gx, gy);
@@ -193,7 +194,31 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     }
   }
 
+  // cells swept by the standing footprint in a step up or down of m lattice steps: centres in
+  // the rectangle from the start footprint's back edge to the end footprint's front edge
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
+    const double a = half_along[0], b = half_across[0];
+    max_jump_[k] = int(std::floor(p.max_step_length / step_length_[k] + kEps));
+    swept_[k].assign(size_t(max_jump_[k]), {});
+    for (int m = 1; m <= max_jump_[k]; ++m) {
+      const double length = m * step_length_[k];
+      const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
+      std::vector<CellStep>& cells = swept_[k][size_t(m - 1)];
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const double u = (dx * c + dy * s) * w.resolution;
+          const double v = (-dx * s + dy * c) * w.resolution;
+          if (u >= -a - kEps && u <= length + a + kEps && std::abs(v) <= b + kEps) {
+            cells.push_back({dx, dy});
+          }
+        }
+      }
+    }
+  }
+
   ComputeFloorHeights();
+  ComputeLevelRanges();
   ComputePermissions();
   ComputeCellCosts();
   memory_->Begin(NumStates());
@@ -329,6 +354,45 @@ void Lattice::ComputeFloorHeights() {
   }
 }
 
+void Lattice::ComputeLevelRanges() {
+  // lowest and highest known floor height in the square around each cell that holds every
+  // standing footprint, separably: along x, then along y
+  const perception::GridWindow& w = fog_.window;
+  const size_t n = size_t(num_cells_);
+  const int r = outer_reach_cells_[0];
+  constexpr float kFloatInf = std::numeric_limits<float>::infinity();
+  std::vector<float> row_lo(n, kFloatInf), row_hi(n, -kFloatInf);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      float lo = kFloatInf, hi = -kFloatInf;
+      for (int x = std::max(0, ix - r); x <= std::min(w.size_x - 1, ix + r); ++x) {
+        const size_t j = size_t(w.Index(x, iy));
+        const CellType t = fog_.type[j];
+        if (t == CellType::kUnknown || t == CellType::kObstacle || !std::isfinite(fog_.height[j])) {
+          continue;
+        }
+        lo = std::min(lo, fog_.height[j]);
+        hi = std::max(hi, fog_.height[j]);
+      }
+      row_lo[size_t(w.Index(ix, iy))] = lo;
+      row_hi[size_t(w.Index(ix, iy))] = hi;
+    }
+  }
+  level_lo_.assign(n, kFloatInf);
+  level_hi_.assign(n, -kFloatInf);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      float lo = kFloatInf, hi = -kFloatInf;
+      for (int y = std::max(0, iy - r); y <= std::min(w.size_y - 1, iy + r); ++y) {
+        lo = std::min(lo, row_lo[size_t(w.Index(ix, y))]);
+        hi = std::max(hi, row_hi[size_t(w.Index(ix, y))]);
+      }
+      level_lo_[size_t(w.Index(ix, iy))] = lo;
+      level_hi_[size_t(w.Index(ix, iy))] = hi;
+    }
+  }
+}
+
 double Lattice::HeightStep(int from_cell, int to_cell) const {
   const float a = floor_h_[size_t(from_cell)], b = floor_h_[size_t(to_cell)];
   if (!std::isfinite(a) || !std::isfinite(b)) return 0.0;
@@ -388,8 +452,11 @@ void Lattice::ComputeHeuristic() {
   // exact cost-to-go on a relaxed graph of cells x posture: the same cell steps, per-metre
   // costs at the lowest factor any move of that posture can have there (standing on stairs
   // costs at least stairs_factor), posture changes at their cost, turns free, no footprint
-  // orientation, and a cell open for a posture unless it is certainly blocked for it. Every 3D
-  // edge maps to a relaxed edge that costs no more, so this is admissible and consistent.
+  // orientation, a cell open for a posture unless it is certainly blocked for it, and standing
+  // steps between cells whose floor heights differ by at most h_stairs + 2 h_floor. Every 3D
+  // edge maps to a relaxed path that costs no more (a step up or down of m lattice steps to the
+  // m relaxed steps along its line, whose cells its sweep keeps open and within h_floor of its
+  // two levels), so this is admissible and consistent.
   const perception::GridWindow& w = fog_.window;
   const size_t n = size_t(num_cells_);
   std::vector<uint8_t> open(2 * n);
@@ -434,7 +501,8 @@ void Lattice::ComputeHeuristic() {
     const int i = node / 2, q = node % 2;
     const int ix = i % w.size_x, iy = i / w.size_x;
     if (open[size_t(node ^ 1)]) relax(node ^ 1, h + p_.posture_change_cost);
-    const double max_dh = q == 0 ? p_.h_stairs : p_.h_floor;
+    // a step up or down crosses cells between its ends up to h_floor beyond its two levels
+    const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
     const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
     for (int k = 0; k < kNumHeadings; ++k) {
       if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
@@ -473,9 +541,16 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
       ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;
   const double out = outer_radius_cells_[q] + kEps;
   const double maybe_d2 = maybe_blocked_d2_[q][size_t(cell)];
-  if (maybe_d2 > out * out && (q == 0 || inside)) return true;
-  const std::vector<uint8_t>& ok = ok_[q];
   const float centre_h = floor_h_[size_t(cell)];
+  if (maybe_d2 > out * out) {
+    if (q == 1 && inside) return true;
+    // standing: fits for certain when every known floor height around is on the centre's level
+    if (q == 0 && std::isfinite(centre_h) &&
+        double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
+        double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor) {
+      return true;
+    }
+  }
   for (const CellStep& o : footprint_[q][heading]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) {
@@ -484,14 +559,25 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
       continue;
     }
     const size_t i = size_t(w.Index(nx, ny));
-    if (ok[i]) continue;
-    // a border cell is the edge of a drop: a standing robot may have it underfoot on its own
-    // level (the foot of a wall or block, the rim of a platform it stands on), never across
-    if (q == 0 && fog_.type[i] == CellType::kBorder && std::isfinite(centre_h) &&
-        std::isfinite(fog_.height[i]) && std::abs(fog_.height[i] - centre_h) <= p_.h_floor) {
+    if (q == 1) {
+      if (!ok_[1][i]) return false;
       continue;
     }
-    return false;
+    // standing: never on an obstacle or under a table; anywhere on unknown cells
+    const CellType t = fog_.type[i];
+    if (t == CellType::kUnknown) continue;
+    if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
+    // floor, stairs and border cells only on the level of the floor under the origin, so the
+    // feet never reach onto another tread or over a drop (the paper's border marks both sides
+    // of a drop: the robot may stand at the foot of a wall or block or on the rim of a
+    // platform, but its footprint never spans the drop); without heights to compare, floor
+    // and stairs cells are allowed and border cells are not
+    const float h = fog_.height[i];
+    if (!std::isfinite(h) || !std::isfinite(centre_h)) {
+      if (t == CellType::kBorder) return false;
+      continue;
+    }
+    if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
   }
   return true;
 }
@@ -505,6 +591,73 @@ bool Lattice::Valid(int s) {
   return (v & 3u) == 1u;
 }
 
+bool Lattice::SweepClear(int cell, int heading, int steps, double lo, double hi) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  for (const CellStep& o : swept_[heading][size_t(steps - 1)]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) continue;  // unknown
+    const size_t i = size_t(w.Index(nx, ny));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
+    // unknown cells by the nearest known floor's height, like the origins of moves
+    const float h = floor_h_[i];
+    if (std::isfinite(h) && (double(h) < lo || double(h) > hi)) return false;
+  }
+  return true;
+}
+
+bool Lattice::FacesStep(int cell, int heading, int steps) const {
+  // the floor's height gradient summed along the origin's line crosses the riser wherever the
+  // ends themselves stand on level floor
+  const perception::GridWindow& w = fog_.window;
+  const CellStep d = kSteps[heading];
+  Eigen::Vector2d grad = Eigen::Vector2d::Zero();
+  for (int m = 0; m <= steps; ++m) grad += FloorGradient(cell + m * (d.dy * w.size_x + d.dx));
+  const double norm = grad.norm();
+  if (norm <= 0.25 * p_.h_floor) return true;
+  const double along =
+      std::abs(grad.x() * d.dx + grad.y() * d.dy) / (norm * std::hypot(double(d.dx), double(d.dy)));
+  return along >= cos_stairs_error_ - kEps;
+}
+
+void Lattice::AddStairsMove(int s, Successor* out, int* n) {
+  const perception::GridWindow& w = fog_.window;
+  const int cell = CellOfState(s);
+  const int k = HeadingOfState(s);
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const float h0 = floor_h_[size_t(cell)];
+  if (!std::isfinite(h0)) return;
+  const CellStep d = kSteps[k];
+  for (int m = 1; m <= max_jump_[k]; ++m) {
+    // the end: a floor on another level within reach, where the robot stands level
+    const int nx = ix + m * d.dx, ny = iy + m * d.dy;
+    if (!w.Contains(nx, ny)) return;
+    const int to = w.Index(nx, ny);
+    const float h1 = floor_h_[size_t(to)];
+    if (!std::isfinite(h1)) continue;
+    const double rise = double(h1) - double(h0);
+    if (std::abs(rise) <= p_.h_floor || std::abs(rise) > p_.h_stairs) continue;
+    const int t = StateIndex(nx, ny, k, Posture::kUpright);
+    if (!Valid(t)) continue;
+    // the way there: nothing in the way of the feet, no drop below or rise above the two levels
+    const double lo = std::min(double(h0), double(h1)) - p_.h_floor;
+    const double hi = std::max(double(h0), double(h1)) + p_.h_floor;
+    if (!SweepClear(cell, k, m, lo, hi) || !FacesStep(cell, k, m)) continue;
+    // cost: the m lattice steps along the line at the stairs factor, each with the mean
+    // clearance and unknown cost of its two ends (as the heuristic's relaxed steps)
+    const double factor = std::max(p_.walk_factor, p_.stairs_factor);
+    const int step = d.dy * w.size_x + d.dx;
+    double cost = 0;
+    for (int j = 0; j < m; ++j) {
+      const size_t a = size_t(cell + j * step), b = size_t(cell + (j + 1) * step);
+      cost += step_length_[k] * (factor + 0.5 * (cell_cost_[a] + cell_cost_[b]));
+    }
+    out[(*n)++] = {t, cost, m * step_length_[k], rise > 0 ? Move::kStairsUp : Move::kStairsDown};
+    return;
+  }
+}
+
 int Lattice::Successors(int s, Successor* out) {
   const perception::GridWindow& w = fog_.window;
   const int cell = CellOfState(s);
@@ -513,31 +666,17 @@ int Lattice::Successors(int s, Successor* out) {
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   int n = 0;
 
-  // a translation by heading step `dir` keeping heading k and the posture
-  auto translate = [&](int dir, int sign, double factor, Move move, bool allow_steps) {
+  // a translation by heading step `dir` keeping heading k and the posture, on one level
+  auto translate = [&](int dir, int sign, double factor, Move move) {
     const int nx = ix + sign * kSteps[dir].dx, ny = iy + sign * kSteps[dir].dy;
     if (!w.Contains(nx, ny)) return;
     const int to = w.Index(nx, ny);
+    if (std::abs(HeightStep(cell, to)) > p_.h_floor) return;
     const int t = StateIndex(nx, ny, k, posture);
-    const double dh = HeightStep(cell, to);
-    if (std::abs(dh) > p_.h_stairs) return;
-    const bool step = std::abs(dh) > p_.h_floor;
-    if (step && !allow_steps) return;
-    if (step) {
-      // face the step: heading along the floor's height gradient (up or down)
-      const Eigen::Vector2d grad = FloorGradient(cell) + FloorGradient(to);
-      const double norm = grad.norm();
-      if (norm > 0.25 * p_.h_floor) {
-        const double along = std::abs(grad.x() * kSteps[k].dx + grad.y() * kSteps[k].dy) /
-                             (norm * std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)));
-        if (along < cos_stairs_error_ - kEps) return;
-      }
-    }
     if (!Valid(t)) return;
-    const bool on_stairs = step || fog_.type[size_t(cell)] == CellType::kStairs ||
-                           fog_.type[size_t(to)] == CellType::kStairs;
+    const bool on_stairs =
+        fog_.type[size_t(cell)] == CellType::kStairs || fog_.type[size_t(to)] == CellType::kStairs;
     if (on_stairs) factor = std::max(factor, p_.stairs_factor);
-    if (step) move = dh > 0 ? Move::kStairsUp : Move::kStairsDown;
     const double length = step_length_[dir];
     const double cost =
         length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
@@ -553,17 +692,18 @@ int Lattice::Successors(int s, Successor* out) {
   const int across = (k + 4) % kNumHeadings;
 
   if (posture == Posture::kUpright) {
-    translate(k, +1, p_.walk_factor, Move::kWalk, true);  // steps up and down only facing them
-    translate(k, -1, p_.backward_factor, Move::kWalk, false);
-    translate(across, +1, p_.sidestep_factor, Move::kSidestep, false);
-    translate(across, -1, p_.sidestep_factor, Move::kSidestep, false);
+    translate(k, +1, p_.walk_factor, Move::kWalk);
+    AddStairsMove(s, out, &n);  // steps up and down only forward, facing them
+    translate(k, -1, p_.backward_factor, Move::kWalk);
+    translate(across, +1, p_.sidestep_factor, Move::kSidestep);
+    translate(across, -1, p_.sidestep_factor, Move::kSidestep);
     turn(left, turn_angle_[k], 1.0);
     turn(right, turn_angle_[right], 1.0);
     const int down = StateIndex(ix, iy, k, Posture::kCrawling);
     if (Valid(down)) out[n++] = {down, p_.posture_change_cost, 0.0, Move::kCrawl};
   } else {
-    translate(k, +1, p_.crawl_factor, Move::kCrawl, false);
-    translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl, false);
+    translate(k, +1, p_.crawl_factor, Move::kCrawl);
+    translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl);
     turn(left, turn_angle_[k], p_.crawl_factor);
     turn(right, turn_angle_[right], p_.crawl_factor);
     const int up = StateIndex(ix, iy, k, Posture::kUpright);

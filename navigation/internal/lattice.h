@@ -115,8 +115,19 @@ class Lattice {
 
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
+  // Appends the step up or down forward from the valid standing state s, if there is one: the
+  // fewest lattice steps along its heading that end in a valid standing state on a floor more
+  // than h_floor and at most h_stairs higher or lower.
+  void AddStairsMove(int s, Successor* out, int* n);
+  // Whether the cells the standing footprint sweeps moving `steps` lattice steps along `heading`
+  // from `cell` are neither obstacle nor tunnel and have floor heights within [lo, hi].
+  bool SweepClear(int cell, int heading, int steps, double lo, double hi) const;
+  // Whether the floor's height gradient along the line of origin cells of that move lies within
+  // max_stairs_heading_error of the heading (up or down); true where there is no gradient.
+  bool FacesStep(int cell, int heading, int steps) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
+  void ComputeLevelRanges();
   void ComputePermissions();
   void ComputeCellCosts();
   void ComputeTerminalCosts();
@@ -134,6 +145,10 @@ class Lattice {
   int num_cells_ = 0;
 
   std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest
+  // per cell: lowest and highest known floor height (cells neither unknown nor obstacle, with a
+  // finite FOG height) in the square of half-side outer_reach_cells_[0] around it; +inf / -inf
+  // if none
+  std::vector<float> level_lo_, level_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
   // (border cells block a standing robot only off its own level)
@@ -143,6 +158,10 @@ class Lattice {
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
   int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
+  // [k][m - 1]: cell offsets the standing footprint sweeps moving m lattice steps along heading
+  // k, for m = 1 .. max_jump_[k] (the most steps within max_step_length)
+  std::vector<std::vector<CellStep>> swept_[kNumHeadings];
+  int max_jump_[kNumHeadings] = {};
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)

@@ -150,6 +150,123 @@ TEST(Lattice, HeuristicIsConsistent) {
   }
 }
 
+// Open floor with a ramp rising 0.5 cm per cell along x (every neighbour within h_floor, but a
+// footprint across it spans 3 cm), treads of 3 and 6 cm, a 10 cm platform with its border rim,
+// an obstacle, a table, and unknown patches, one of them over a riser.
+Fog LevelsFog() {
+  Fog fog = FlatFog(40, 36, 0.04);  // 1.6 m x 1.44 m
+  for (int iy = 0; iy < 12; ++iy) {
+    for (int ix = 0; ix < 40; ++ix) fog.height[size_t(fog.window.Index(ix, iy))] = 0.005f * ix;
+  }
+  FillBox(&fog, 0.40, 0.48, 0.60, 1.44, CellType::kFloor, 0.03f);
+  FillBox(&fog, 0.60, 0.48, 0.84, 1.44, CellType::kFloor, 0.06f);
+  FillBox(&fog, 1.10, 0.90, 1.40, 1.20, CellType::kFloor, 0.10f);
+  ClassifyFloorChanges(&fog, 0.015, 0.05);
+  FillBox(&fog, 1.20, 0.56, 1.32, 0.64, CellType::kObstacle, 0.2f);
+  FillBox(&fog, 0.96, 0.48, 1.16, 0.72, CellType::kTunnel, 0.0f);
+  FillBox(&fog, 0.56, 1.00, 0.64, 1.20, CellType::kUnknown, -INFINITY);
+  FillBox(&fog, 1.40, 0.10, 1.52, 0.30, CellType::kUnknown, -INFINITY);
+  return fog;
+}
+
+// Standing is allowed exactly where no footprint cell is an obstacle or tunnel and every one
+// with a known floor height (not unknown, finite) is within h_floor of the floor under the
+// origin, checked cell by cell here, so the planner's shortcuts (distance transforms, height
+// ranges) can never let a footprint span a step, even on a ramp where no neighbours differ by
+// more than h_floor.
+TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
+  const PlannerParams p;
+  const Fog fog = LevelsFog();
+  const perception::GridWindow& w = fog.window;
+  Lattice lattice(fog, {1.5, 0.7}, p);
+  const double a = 0.5 * p.depth + p.margin, b = 0.5 * p.shoulder_width + p.margin;
+  int allowed = 0, refused_for_level = 0;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const double level = lattice.FloorHeight(w.Index(ix, iy));
+      for (int k = 0; k < kNumHeadings; ++k) {
+        const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
+        bool fits = true, off_level = false;
+        for (int dy = -6; dy <= 6; ++dy) {
+          for (int dx = -6; dx <= 6; ++dx) {
+            const double u = (dx * c + dy * s) * w.resolution;
+            const double v = (-dx * s + dy * c) * w.resolution;
+            if (std::abs(u) > a + 1e-9 || std::abs(v) > b + 1e-9) continue;
+            if (!w.Contains(ix + dx, iy + dy)) continue;
+            const CellType t = fog.TypeAt(ix + dx, iy + dy);
+            const float h = fog.HeightAt(ix + dx, iy + dy);
+            if (t == CellType::kUnknown) continue;
+            if (t == CellType::kObstacle || t == CellType::kTunnel) {
+              fits = false;
+            } else if (!std::isfinite(h) || !std::isfinite(level)) {
+              fits = fits && t != CellType::kBorder;
+            } else if (std::abs(double(h) - level) > p.h_floor) {
+              fits = false;
+              off_level = true;
+            }
+          }
+        }
+        const int s_up = lattice.StateIndex(ix, iy, k, Posture::kUpright);
+        ASSERT_EQ(lattice.Valid(s_up), fits) << "cell " << ix << "," << iy << " heading " << k;
+        allowed += fits;
+        refused_for_level += off_level;
+      }
+    }
+  }
+  // the world has both, so the comparison means something
+  EXPECT_GT(allowed, 3000);
+  EXPECT_GT(refused_for_level, 3000);
+  // on the ramp: level facing up it (3 cells span 1 cm), not across it (7 cells span 3 cm)
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(20, 5, 0, Posture::kUpright)));
+  EXPECT_FALSE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
+}
+
+// Steps up and down go forward along the heading, by at most max_step_length, from a level
+// standing state to one on a floor more than h_floor and at most h_stairs higher or lower, and
+// cost at least their length at the stairs factor; walks, side-steps and crawls stay within
+// h_floor; the heuristic stays consistent across them.
+TEST(Lattice, StepsJumpBetweenLevelStatesWithinReach) {
+  PlannerParams p;
+  for (const double max_step : {0.16, 0.30}) {
+    p.max_step_length = max_step;
+    for (const Fog& fog : {LevelsFog(), ClutteredFog(3)}) {
+      Lattice lattice(fog, {1.3, 0.62}, p);
+      Successor succ[kMaxSuccessors];
+      int steps = 0;
+      for (int s = 0; s < lattice.NumStates(); ++s) {
+        if (!lattice.Valid(s)) continue;
+        const int n = lattice.Successors(s, succ);
+        const double h0 = lattice.FloorHeight(lattice.CellOfState(s));
+        for (int i = 0; i < n; ++i) {
+          const int t = succ[i].state;
+          ASSERT_LE(lattice.Heuristic(s), succ[i].cost + lattice.Heuristic(t) + 1e-12);
+          const double dh = lattice.FloorHeight(lattice.CellOfState(t)) - h0;
+          const Pose2 a = lattice.PoseOf(s), b = lattice.PoseOf(t);
+          const double along = (b.x - a.x) * std::cos(a.yaw) + (b.y - a.y) * std::sin(a.yaw);
+          if (succ[i].move != Move::kStairsUp && succ[i].move != Move::kStairsDown) {
+            if (std::isfinite(dh)) {
+              EXPECT_LE(std::abs(dh), p.h_floor + 1e-7) << MoveName(succ[i].move);
+            }
+            continue;
+          }
+          ++steps;
+          EXPECT_EQ(lattice.HeadingOfState(t), lattice.HeadingOfState(s));
+          EXPECT_EQ(lattice.PostureOfState(t), Posture::kUpright);
+          EXPECT_TRUE(lattice.Valid(t));
+          EXPECT_NEAR(along, succ[i].length, 1e-9);
+          EXPECT_GT(succ[i].length, 0.0);
+          EXPECT_LE(succ[i].length, p.max_step_length + 1e-9);
+          EXPECT_GT(std::abs(dh), p.h_floor);
+          EXPECT_LE(std::abs(dh), p.h_stairs + 1e-7);
+          EXPECT_EQ(dh > 0, succ[i].move == Move::kStairsUp);
+          EXPECT_GE(succ[i].cost, succ[i].length * p.stairs_factor - 1e-12);
+        }
+      }
+      EXPECT_GT(steps, 20) << "max_step_length " << max_step;
+    }
+  }
+}
+
 TEST(Lattice, SuccessorsStayValidAndCostAtLeastTheirLength) {
   const PlannerParams p;
   const Fog fog = ClutteredFog(5);

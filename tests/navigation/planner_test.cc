@@ -51,21 +51,48 @@ std::vector<std::pair<int, int>> FootprintCells(const Fog& fog, const PathPose& 
   return cells;
 }
 
-// Checks every pose after the start: no obstacle cell under any footprint, no border cell off
-// the robot's own level, no tunnel cell under an upright one, a crawling footprint only on
-// tunnel, floor and unknown cells.
+// Whether a cell has a known floor height: neither unknown nor obstacle, with a finite height.
+bool KnownHeight(const Fog& fog, int ix, int iy) {
+  const CellType t = fog.TypeAt(ix, iy);
+  return t != CellType::kUnknown && t != CellType::kObstacle && std::isfinite(fog.HeightAt(ix, iy));
+}
+
+// The floor height under a path pose's origin: the FOG's where it is known (and then the
+// pose's floor_z must agree), else the pose's floor_z (the nearest known floor's).
+double OriginHeight(const Fog& fog, const PathPose& q) {
+  int cx = 0, cy = 0;
+  fog.window.CellOf(q.pose_G.x, q.pose_G.y, &cx, &cy);
+  if (!KnownHeight(fog, cx, cy)) return q.floor_z;
+  EXPECT_NEAR(q.floor_z, fog.HeightAt(cx, cy), 1e-6);
+  return fog.HeightAt(cx, cy);
+}
+
+// Checks that a standing pose is level: every footprint cell with a known floor height lies
+// within h_floor of the floor under the origin.
+void ExpectLevel(const Fog& fog, const PathPose& q, const PlannerParams& p,
+                 const std::string& what) {
+  const double level = OriginHeight(fog, q);
+  for (const auto& [ix, iy] : FootprintCells(fog, q, p)) {
+    if (!KnownHeight(fog, ix, iy)) continue;
+    EXPECT_LE(std::abs(fog.HeightAt(ix, iy) - level), p.h_floor + 1e-7)
+        << what << ": footprint cell " << ix << "," << iy << " ("
+        << perception::CellTypeName(fog.TypeAt(ix, iy)) << ", " << fog.HeightAt(ix, iy)
+        << " m) off the origin's level " << level;
+  }
+}
+
+// Checks every pose after the start: no obstacle cell under any footprint, a standing one level
+// (so no border cell off the robot's own level) and on no tunnel cell, a crawling footprint only
+// on tunnel, floor and unknown cells.
 void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerParams& p) {
   for (size_t i = 1; i < r.path.size(); ++i) {
-    int cx = 0, cy = 0;
-    fog.window.CellOf(r.path[i].pose_G.x, r.path[i].pose_G.y, &cx, &cy);
-    const float level = fog.HeightAt(cx, cy);
+    if (r.path[i].posture == Posture::kUpright) {
+      ExpectLevel(fog, r.path[i], p,
+                  "pose " + std::to_string(i) + " (" + MoveName(r.path[i].move) + ")");
+    }
     for (const auto& [ix, iy] : FootprintCells(fog, r.path[i], p)) {
       const CellType t = fog.TypeAt(ix, iy);
       ASSERT_NE(t, CellType::kObstacle) << "pose " << i << " cell " << ix << "," << iy;
-      if (t == CellType::kBorder) {
-        ASSERT_LE(std::abs(fog.HeightAt(ix, iy) - level), p.h_floor)
-            << "pose " << i << " on a border cell off its level, cell " << ix << "," << iy;
-      }
       if (r.path[i].posture == Posture::kUpright) {
         ASSERT_NE(t, CellType::kTunnel) << "pose " << i << " cell " << ix << "," << iy;
       } else {
@@ -124,6 +151,55 @@ void ExpectMovesConsistent(const PlanResult& r) {
         break;
     }
   }
+}
+
+// Checks every step up or down: forward, longer than 0 and at most max_step_length, between
+// two level standing poses whose floors differ by more than h_floor and at most h_stairs, the
+// floor_z of each end its own level, and no cell the footprint sweeps on the way an obstacle or
+// more than h_floor beyond both levels. Returns how many there were.
+int ExpectStepsFit(const Fog& fog, const PlanResult& r, const PlannerParams& p) {
+  int steps = 0;
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const PathPose& b = r.path[i];
+    if (b.move != Move::kStairsUp && b.move != Move::kStairsDown) continue;
+    ++steps;
+    const PathPose& a = r.path[i - 1];
+    const std::string where = "pose " + std::to_string(i) + " (" + MoveName(b.move) + ")";
+    EXPECT_EQ(a.posture, Posture::kUpright) << where;
+    EXPECT_EQ(b.posture, Posture::kUpright) << where;
+    const Eigen::Vector2d d(b.pose_G.x - a.pose_G.x, b.pose_G.y - a.pose_G.y);
+    const Eigen::Vector2d ahead(std::cos(a.pose_G.yaw), std::sin(a.pose_G.yaw));
+    EXPECT_GT(d.dot(ahead), 0.0) << where;
+    EXPECT_NEAR(d.dot(ahead), d.norm(), 1e-9) << where;
+    EXPECT_LE(d.norm(), p.max_step_length + 1e-9) << where;
+    ExpectLevel(fog, a, p, where + " start");
+    ExpectLevel(fog, b, p, where + " end");
+    const double h0 = OriginHeight(fog, a), h1 = OriginHeight(fog, b);
+    EXPECT_GT(std::abs(h1 - h0), p.h_floor) << where;
+    EXPECT_LE(std::abs(h1 - h0), p.h_stairs + 1e-7) << where;
+    EXPECT_EQ(h1 > h0, b.move == Move::kStairsUp) << where;
+    // the swept rectangle: from the start footprint's back edge to the end footprint's front
+    const double half_depth = 0.5 * p.depth + p.margin;
+    const double half_width = 0.5 * p.shoulder_width + p.margin;
+    const double lo = std::min(h0, h1) - p.h_floor - 1e-7, hi = std::max(h0, h1) + p.h_floor + 1e-7;
+    for (int iy = 0; iy < fog.window.size_y; ++iy) {
+      for (int ix = 0; ix < fog.window.size_x; ++ix) {
+        const Eigen::Vector2d c =
+            fog.window.CellCenter(ix, iy) - Eigen::Vector2d(a.pose_G.x, a.pose_G.y);
+        const double u = c.dot(ahead), v = ahead.x() * c.y() - ahead.y() * c.x();
+        if (u < -half_depth - 1e-6 || u > d.norm() + half_depth + 1e-6 ||
+            std::abs(v) > half_width + 1e-6) {
+          continue;
+        }
+        EXPECT_NE(fog.TypeAt(ix, iy), CellType::kObstacle)
+            << where << " sweeps " << ix << "," << iy;
+        if (!KnownHeight(fog, ix, iy)) continue;
+        EXPECT_GE(fog.HeightAt(ix, iy), lo) << where << " sweeps " << ix << "," << iy;
+        EXPECT_LE(fog.HeightAt(ix, iy), hi) << where << " sweeps " << ix << "," << iy;
+      }
+    }
+  }
+  return steps;
 }
 
 // y of the path where it crosses x (linear between poses).
@@ -344,13 +420,19 @@ TEST(Planner, ClimbsA3cmTreadUpThenDown) {
   const auto down = std::find_if(r.path.begin(), r.path.end(),
                                  [](const PathPose& q) { return q.move == Move::kStairsDown; });
   EXPECT_LT(up - r.path.begin(), down - r.path.begin());
-  EXPECT_NEAR(up->pose_G.x, 1.42, 0.05);
-  EXPECT_NEAR(down->pose_G.x, 1.74, 0.05);
+  // each step from the last level pose before the riser (the footprint's front cell the last
+  // one before it) to the first level pose after it: three cells, 0.12 m
+  EXPECT_NEAR((up - 1)->pose_G.x, 1.34, 1e-9);
+  EXPECT_NEAR(up->pose_G.x, 1.46, 1e-9);
+  EXPECT_NEAR((down - 1)->pose_G.x, 1.66, 1e-9);
+  EXPECT_NEAR(down->pose_G.x, 1.78, 1e-9);
   // the rise of each step from the poses' floor heights
   EXPECT_NEAR(up->floor_z - (up - 1)->floor_z, 0.03, 1e-6);
   EXPECT_NEAR(down->floor_z - (down - 1)->floor_z, -0.03, 1e-6);
   EXPECT_NEAR(r.path.front().floor_z, 0.0, 1e-9);
   EXPECT_EQ(Count(r, Move::kSidestep), 0) << Moves(r);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 2);
+  ExpectFootprintsClear(fog, r, p);
 }
 
 TEST(Planner, FacesTheStepsItClimbs) {
@@ -371,10 +453,91 @@ TEST(Planner, FacesTheStepsItClimbs) {
 
 TEST(Planner, ClimbsTheCourseStairs) {
   const Fog fog = Treads({{1.0, 0.03f}, {1.25, 0.06f}, {1.6, 0.03f}}, 1.85);
-  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, PlannerParams());
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
   ASSERT_EQ(r.status, PlanStatus::kOk);
   EXPECT_EQ(Count(r, Move::kStairsUp), 2) << Moves(r);
   EXPECT_EQ(Count(r, Move::kStairsDown), 2) << Moves(r);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 4);
+  ExpectFootprintsClear(fog, r, p);
+}
+
+// The scenario's treads (3, 6 and 3 cm, 0.25, 0.35 and 0.25 m deep) at offsets across a cell,
+// approached straight and at an angle: every standing pose is level, so no footprint spans a
+// riser (the toes never go into the next riser), and every step is one jump of at most
+// max_step_length between two level poses.
+TEST(Planner, StandsLevelAndStepsWithinReachOnTheScenarioTreads) {
+  const PlannerParams p;
+  for (const double offset : {0.0, 0.01, 0.02, 0.03}) {
+    const double x0 = 1.0 + offset;
+    const Fog fog = Treads({{x0, 0.03f}, {x0 + 0.25, 0.06f}, {x0 + 0.60, 0.03f}}, x0 + 0.85);
+    for (const Pose2& start :
+         {Pose2{0.50, 0.82, 0.0}, Pose2{0.40, 0.30, 0.5}, Pose2{0.60, 1.30, -0.3}}) {
+      const PlanResult r = Plan(fog, start, {2.60, 0.82}, p);
+      const std::string where =
+          "treads from x = " + std::to_string(x0) + ", start y = " + std::to_string(start.y);
+      ASSERT_EQ(r.status, PlanStatus::kOk) << where;
+      EXPECT_EQ(Count(r, Move::kStairsUp), 2) << where << ": " << Moves(r);
+      EXPECT_EQ(Count(r, Move::kStairsDown), 2) << where << ": " << Moves(r);
+      EXPECT_EQ(ExpectStepsFit(fog, r, p), 4) << where;
+      ExpectFootprintsClear(fog, r, p);
+      ExpectMovesConsistent(r);
+    }
+  }
+}
+
+// The closed-loop collision: standing on the 3 cm tread with the origin 3 cm before the 6 cm
+// riser, the footprint reaches onto the higher tread. That start is not allowed: the robot
+// shuffles back to a level pose, then steps up.
+TEST(Planner, ShufflesBackFromAStartWhoseFootprintSpansARiser) {
+  const Fog fog = Treads({{1.0, 0.03f}, {1.24, 0.06f}, {1.6, 0.03f}}, 1.84);
+  const PlannerParams p;
+  const PlanResult r = Plan(fog, {1.21, 0.82, 0.0}, {2.50, 0.82}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  ASSERT_GE(r.path.size(), 3u);
+  EXPECT_LT(r.path[1].pose_G.x, 1.21);  // back, off the riser
+  EXPECT_NEAR(r.path[1].floor_z, 0.03, 1e-6);
+  EXPECT_EQ(r.path[2].move, Move::kStairsUp) << Moves(r);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 3);
+  ExpectFootprintsClear(fog, r, p);
+}
+
+// A tread shallower than the footprint (0.10 m deep, which the map holds as two cells where it
+// starts in the first half of a cell; the footprint is three deep) has no level pose, and the
+// step over it onto the next tread would be longer than max_step_length and rise more than
+// h_stairs: with no other way up, there is no path. A 3 cm threshold strip as shallow is not
+// crossed either.
+TEST(Planner, NoPathOverATreadShallowerThanTheFootprint) {
+  const PlannerParams p;
+  for (const double x0 : {1.40, 1.41}) {
+    const Fog fog = Treads({{x0, 0.03f}, {x0 + 0.10, 0.06f}, {x0 + 0.50, 0.03f}}, x0 + 0.75);
+    const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.60, 0.82}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath) << "tread from x = " << x0 << ": " << Moves(r);
+    EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  }
+  {
+    const Fog fog = Treads({{1.40, 0.03f}, {1.50, 0.0f}}, 3.0);
+    const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.60, 0.82}, p);
+    EXPECT_EQ(r.status, PlanStatus::kNoPath) << Moves(r);
+  }
+  // the same staircase with the first tread 0.25 m deep is climbed
+  const Fog deep = Treads({{1.40, 0.03f}, {1.65, 0.06f}, {2.05, 0.03f}}, 2.30);
+  const PlanResult r = Plan(deep, {0.50, 0.82, 0.0}, {2.60, 0.82}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(ExpectStepsFit(deep, r, p), 4);
+}
+
+// A riser across the heading takes a step of three 4 cm cells (0.12 m): refused when the
+// controller's longest step is shorter.
+TEST(Planner, StepsNoLongerThanMaxStepLength) {
+  const Fog fog = Treads({{1.4, 0.03f}}, 1.72);
+  PlannerParams p;
+  p.max_step_length = 0.11;
+  EXPECT_EQ(Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p).status, PlanStatus::kNoPath);
+  p.max_step_length = 0.12;
+  const PlanResult r = Plan(fog, {0.50, 0.82, 0.0}, {2.50, 0.82}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 2);
 }
 
 TEST(Planner, RefusesAn8cmStep) {
@@ -549,6 +712,7 @@ TEST(Planner, RunsTheCourseThroughMapNoise) {
   EXPECT_GT(Count(r, Move::kSidestep), 0) << Moves(r);
   EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
   ExpectFootprintsClear(course.fog, r, p);
+  EXPECT_EQ(ExpectStepsFit(course.fog, r, p), 4);
   ExpectMovesConsistent(r);
 }
 
@@ -587,6 +751,7 @@ TEST(Planner, RunsTheCourseWithEveryMove) {
   EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
   EXPECT_GT(Count(r, Move::kWalk), 0) << Moves(r);
   ExpectFootprintsClear(course.fog, r, p);
+  EXPECT_EQ(ExpectStepsFit(course.fog, r, p), 4);
   ExpectMovesConsistent(r);
   // between the 8 cm block (y > 0.12) and the 20 cm block (y < -0.22): nearer the low one
   EXPECT_GT(YAtX(r, 0.55), -0.05);
@@ -642,6 +807,7 @@ TEST(Planner, RunsTheStairsAndTableScenarioOnItsGroundTruthFog) {
   EXPECT_GT(Count(r, Move::kSidestep), 0) << Moves(r);
   EXPECT_GT(Count(r, Move::kCrawl), 0) << Moves(r);
   ExpectFootprintsClear(fog, r, p);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 4);
   ExpectMovesConsistent(r);
 }
 
