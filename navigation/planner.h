@@ -65,9 +65,11 @@ inline constexpr int kNumHeadings = 16;
 // fewest lattice steps (at most max_step_length) that lead from a standing pose on floor h0 to
 // one on floor h1 with h_floor < |h1 - h0| <= h_stairs; the poses it passes need not be
 // allowed, but no cell its footprint sweeps may be an obstacle or tunnel cell or lie more than
-// h_floor above or below both levels. So on 4 cm cells a riser across the heading takes a step
-// of 0.12 m, and a tread shallower than the footprint is stepped over only if the step over it
-// fits in max_step_length (with the defaults it never does: no path).
+// h_floor above or below both levels. So on 4 cm cells, where the upright footprint is three
+// cells (0.12 m) along the heading, a riser across the heading takes a step of 0.12 m, from the
+// origin 0.06 m before the riser (the shipped humanoid's toes 5 mm short of it) to 0.06 m past
+// it; a tread the map holds as fewer than three cells is never stood on, and stepped over only
+// if the step over it fits in max_step_length (with the defaults it never does: no path).
 struct PlannerParams {
   // robot body, metres
   double shoulder_width = 0.26;  // upright extent across the heading
