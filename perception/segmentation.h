@@ -31,6 +31,10 @@ struct StereoParams {
   bool pad_left = true;           // pad both images on the left by num_disparities columns so
                                   // that the left border columns also get disparities
   double max_depth = 10.0;        // metres; farther points (disparity below f B / max_depth) NaN
+  int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on
+                                  // the grey images (0 = SGBM's own interpolation, which locks
+                                  // towards whole pixels and makes surfaces look terraced)
+  int refine_window = 5;          // side in pixels of the refinement window, odd
 };
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at

@@ -5,6 +5,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "perception/segmentation.h"
 
@@ -33,6 +34,54 @@ Image<T> SubsampleImage(const Image<T>& in) {
   return out;
 }
 
+// Grey levels of an image as floats.
+cv::Mat GreyFloat(const RgbImage& image) {
+  cv::Mat grey(image.height, image.width, CV_32F);
+  for (int v = 0; v < image.height; ++v) {
+    float* row = grey.ptr<float>(v);
+    for (int u = 0; u < image.width; ++u) {
+      const Rgb& c = image.at(u, v);
+      row[u] = 0.299f * c.r + 0.587f * c.g + 0.114f * c.b;
+    }
+  }
+  return grey;
+}
+
+// Sub-pixel refinement of a disparity d0 at (u, v) by Gauss-Newton on the sum of squared
+// differences over a window, sampling the right image linearly along its row: minimises
+// sum (L(x) - R(x - d))^2, step = -sum e g / sum g^2 with e = L - R(x - d), g = R_x(x - d).
+// Returns NaN if the refinement leaves [d0 - 1, d0 + 1] or the window has no texture.
+float RefineDisparity(const cv::Mat& left, const cv::Mat& right, const cv::Mat& right_dx, int u,
+                      int v, float d0, int half, int iterations) {
+  const int w = left.cols, h = left.rows;
+  double d = d0;
+  for (int it = 0; it < iterations; ++it) {
+    double seg = 0, sgg = 0;
+    for (int vv = std::max(v - half, 0); vv <= std::min(v + half, h - 1); ++vv) {
+      const float* l = left.ptr<float>(vv);
+      const float* r = right.ptr<float>(vv);
+      const float* g = right_dx.ptr<float>(vv);
+      for (int uu = std::max(u - half, 0); uu <= std::min(u + half, w - 1); ++uu) {
+        const double x = uu - d;
+        const int x0 = int(std::floor(x));
+        if (x0 < 0 || x0 + 1 >= w) continue;
+        const double t = x - x0;
+        const double rv = (1 - t) * r[x0] + t * r[x0 + 1];
+        const double gv = (1 - t) * g[x0] + t * g[x0 + 1];
+        const double e = l[uu] - rv;
+        seg += e * gv;
+        sgg += gv * gv;
+      }
+    }
+    if (!(sgg > 1e-6)) return std::numeric_limits<float>::quiet_NaN();
+    const double step = std::clamp(-seg / sgg, -0.5, 0.5);
+    d += step;
+    if (std::abs(d - d0) > 1.0) return std::numeric_limits<float>::quiet_NaN();
+    if (std::abs(step) < 1e-3) break;
+  }
+  return float(d);
+}
+
 }  // namespace
 
 PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const CameraIntrinsics& K,
@@ -58,6 +107,14 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
   cv::Mat disp16;
   sgbm->compute(l, r, disp16);
 
+  // sub-pixel refinement on the grey images (SGBM's interpolation locks towards whole pixels)
+  cv::Mat gl, gr, gr_dx;
+  if (p.refine_iterations > 0) {
+    gl = GreyFloat(left);
+    gr = GreyFloat(right);
+    cv::Sobel(gr, gr_dx, CV_32F, 1, 0, 1, 0.5);  // central difference
+  }
+
   // triangulate: z = f B / disparity, x = (u - cx) z / fx, y = (v - cy) z / fy
   const double fb = K.fx * K.baseline;
   const double min_disp = fb / p.max_depth;
@@ -66,7 +123,12 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
     for (int u = 0; u < w; ++u) {
       const int raw = row[u];
       if (raw <= 0) continue;
-      const double disp = raw / 16.0;
+      double disp = raw / 16.0;
+      if (p.refine_iterations > 0) {
+        disp = RefineDisparity(gl, gr, gr_dx, u, v, float(disp), p.refine_window / 2,
+                               p.refine_iterations);
+        if (!std::isfinite(disp)) continue;
+      }
       if (disp < min_disp) continue;
       const double z = fb / disp;
       points.at(u, v) = Eigen::Vector3f(float((u - K.cx) * z / K.fx),

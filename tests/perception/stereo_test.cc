@@ -56,8 +56,7 @@ TEST(Stereo, ErrorGrowsWithDistance) {
               1000 * near.rms, 100 * near.valid, 1000 * far.rms, 100 * far.valid);
   EXPECT_GE(near.valid, 0.9);
   EXPECT_GE(far.valid, 0.9);
-  // SGBM's sub-pixel interpolation locks towards whole disparities: about 0.3 px at 10.6 px
-  EXPECT_LT(near.rms, 0.05);
+  EXPECT_LT(near.rms, 0.01);
   EXPECT_GT(far.rms, 3 * near.rms);  // a constant disparity error gives 9x
 }
 
@@ -73,9 +72,29 @@ TEST(Stereo, DisparityMatchesGeometry) {
     if (std::isfinite(d)) valid.push_back(d);
   ASSERT_FALSE(valid.empty());
   std::nth_element(valid.begin(), valid.begin() + valid.size() / 2, valid.end());
-  EXPECT_NEAR(valid[valid.size() / 2], expected, 0.4);  // pixel locking, see above
+  EXPECT_NEAR(valid[valid.size() / 2], expected, 0.05);
   const RgbImage picture = DrawDisparity(disparity);
   EXPECT_EQ(picture.width, 176);
+}
+
+TEST(Stereo, RefinementRemovesPixelLocking) {
+  // SGBM's own sub-pixel interpolation locks towards whole disparities (about 0.3 px off at
+  // 10.6 px); the Gauss-Newton refinement brings the median back to the true value
+  const auto K = SceneIntrinsics(176, 144);
+  RgbImage left, right;
+  RenderStereoPair(Wall(1.0), K, SceneCamera(0, 0, 0, 0), &left, &right);
+  StereoParams sgbm_only;
+  sgbm_only.refine_iterations = 0;
+  auto median_error = [&](const StereoParams& p) {
+    Image<float> disparity;
+    StereoPointImage(left, right, K, p, &disparity);
+    std::vector<float> err;
+    for (float d : disparity.data)
+      if (std::isfinite(d)) err.push_back(std::abs(d - float(K.fx * K.baseline)));
+    std::nth_element(err.begin(), err.begin() + err.size() / 2, err.end());
+    return err[err.size() / 2];
+  };
+  EXPECT_LT(median_error(StereoParams()), 0.5 * median_error(sgbm_only));
 }
 
 TEST(Stereo, UntexturedPairGivesNoPoints) {
