@@ -119,8 +119,10 @@ struct SegmentParams {
   bool trade_lines = true;      // post-processing steps, each may be turned off
   bool trade_points = true;
   bool merge_planes = true;
-  bool merge_coplanar = true;   // extension: also merge regions that are not neighbours in the
-                                // image (one surface split by an occluder) by the same test
+  bool merge_coplanar = false;  // extension: also merge regions that are not neighbours in the
+                                // image (one surface split by an occluder) by the same test;
+                                // off by default as it also joins distinct coplanar surfaces
+                                // (two treads of one height)
 };
 
 // Table 1 settings for precise range data such as the ideal depth mode: C_max = 10 and a

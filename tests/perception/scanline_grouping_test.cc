@@ -149,8 +149,11 @@ TEST(ScanlineGrouping, SplitsStaircaseIntoTreadsAndRisers) {
   const auto K = SceneIntrinsics(176, 144);
   const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
   const SceneView view = RenderScene(scene, K, X_WC);
+  // the floor shows in front of and beyond the stairs: join its two regions
+  SegmentParams p;
+  p.merge_coplanar = true;
 
-  const PlaneSet set = SegmentPlanes(Points(view, K));
+  const PlaneSet set = SegmentPlanes(Points(view, K), p);
 
   // every tread (+z) and riser (-x) is its own plane: no two share a best plane
   const auto match = MatchSurfaces(set, view.surface);
@@ -180,6 +183,7 @@ TEST(ScanlineGrouping, SplitsStaircaseWithTheUbMethodToo) {
   const SceneView view = RenderScene(scene, K, X_WC);
   SegmentParams p;
   p.method = LineMethod::kSplit;
+  p.merge_coplanar = true;
   p.d_cord = 0.005;
   p.d_line = 0.01;
 
@@ -258,13 +262,37 @@ TEST(ScanlineGrouping, SegmentsSubsampledImages) {
 
   // precise range settings: with the stereo sigma floor of 1 mm the two-row riser of the top
   // step (too short to seed a plane of three lines) is absorbed into the tread below
-  const PlaneSet set = SegmentPlanes(Subsample2x(Points(view, K)), PreciseRangeParams());
+  SegmentParams p = PreciseRangeParams();
+  p.merge_coplanar = true;
+  const PlaneSet set = SegmentPlanes(Subsample2x(Points(view, K)), p);
 
   ASSERT_EQ(set.labels.width, 88);
   const SegmentationScore score = ScoreSegmentation(set.labels, Subsample2x(view.surface),
                                                     Subsample2x(view.depth));
   EXPECT_GE(score.accuracy, 0.97);
   EXPECT_GE(score.coverage, 0.9);
+}
+
+TEST(ScanlineGrouping, KeepsRegionsApartInTheImageUnlessAskedToMergeCoplanar) {
+  const Scene scene = internal::Staircase(0.8, 3, 0.25, 0.03);
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.55, 30 * kDeg);
+  const SceneView view = RenderScene(scene, K, X_WC);
+  SegmentParams merge;
+  merge.merge_coplanar = true;
+
+  const PlaneSet apart = SegmentPlanes(Points(view, K));
+  const PlaneSet joined = SegmentPlanes(Points(view, K), merge);
+
+  // the floor in front of and beyond the stairs: two planes by default, one when merged
+  auto floor_planes = [&](const PlaneSet& set) {
+    int count = 0;
+    for (const Plane& pl : set.planes) count += std::abs(pl.d + 0.55) < 0.002 && pl.n.y() < -0.8;
+    return count;
+  };
+  EXPECT_EQ(floor_planes(apart), 2);
+  EXPECT_EQ(floor_planes(joined), 1);
+  EXPECT_EQ(apart.planes.size(), joined.planes.size() + 1);
 }
 
 TEST(ScanlineGrouping, LabelsAndBordersAgree) {
