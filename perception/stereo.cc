@@ -56,25 +56,27 @@ float RefineDisparity(const cv::Mat& left, const cv::Mat& right, const cv::Mat& 
   const int w = left.cols, h = left.rows;
   double d = d0;
   for (int it = 0; it < iterations; ++it) {
+    // uu - d = (uu - shift) + t with a whole shift and 0 <= t < 1, the same for the window
+    const int shift = int(std::ceil(d));
+    const float t = float(shift - d), s = 1 - t;
+    const int ub = std::max({u - half, 0, shift});
+    const int ue = std::min({u + half, w - 1, w - 2 + shift});
     double seg = 0, sgg = 0;
     for (int vv = std::max(v - half, 0); vv <= std::min(v + half, h - 1); ++vv) {
       const float* l = left.ptr<float>(vv);
       const float* r = right.ptr<float>(vv);
       const float* g = right_dx.ptr<float>(vv);
-      for (int uu = std::max(u - half, 0); uu <= std::min(u + half, w - 1); ++uu) {
-        const double x = uu - d;
-        const int x0 = int(std::floor(x));
-        if (x0 < 0 || x0 + 1 >= w) continue;
-        const double t = x - x0;
-        const double rv = (1 - t) * r[x0] + t * r[x0 + 1];
-        const double gv = (1 - t) * g[x0] + t * g[x0 + 1];
-        const double e = l[uu] - rv;
+      for (int uu = ub; uu <= ue; ++uu) {
+        const int x0 = uu - shift;
+        const float rv = s * r[x0] + t * r[x0 + 1];
+        const float gv = s * g[x0] + t * g[x0 + 1];
+        const float e = l[uu] - rv;
         seg += e * gv;
         sgg += gv * gv;
       }
     }
     if (!(sgg > 1e-6)) return std::numeric_limits<float>::quiet_NaN();
-    const double step = std::clamp(-seg / sgg, -0.5, 0.5);
+    const double step = std::clamp(-double(seg) / sgg, -0.5, 0.5);
     d += step;
     if (std::abs(d - d0) > 1.0) return std::numeric_limits<float>::quiet_NaN();
     if (std::abs(step) < 1e-3) break;
