@@ -101,11 +101,11 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
     cv::copyMakeBorder(r, r, 0, 0, pad, 0, cv::BORDER_REPLICATE);
   }
   const int area = p.block_size * p.block_size * 3;
+  const int mode = p.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM;
   auto sgbm = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size,
                                      p.p1 > 0 ? p.p1 : 8 * area, p.p2 > 0 ? p.p2 : 32 * area,
                                      p.disp12_max_diff, p.pre_filter_cap, p.uniqueness_ratio,
-                                     p.speckle_window_size, p.speckle_range,
-                                     p.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM);
+                                     p.speckle_window_size, p.speckle_range, mode);
   cv::Mat disp16;
   sgbm->compute(l, r, disp16);
 
