@@ -28,6 +28,16 @@ GroundFrame FeetFrame(const std::array<FootPlacement, 2>& feet) {
           std::min(feet[0].p.z(), feet[1].p.z())};
 }
 
+// flat feet side by side at a frame, stance_width apart
+std::array<FootPlacement, 2> FeetAt(const GroundFrame& frame, double stance_width) {
+  std::array<FootPlacement, 2> feet;
+  for (int s = 0; s < 2; ++s) {
+    feet[s].p = frame.PointAt(0, (s == 0 ? 0.5 : -0.5) * stance_width, 0);
+    feet[s].yaw = frame.yaw;
+  }
+  return feet;
+}
+
 Pose2 Compose(const Pose2& a, const Pose2& b) {
   const double c = std::cos(a.yaw), s = std::sin(a.yaw);
   return {a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y, internal::WrapAngle(a.yaw + b.yaw)};
@@ -93,10 +103,7 @@ void Controller::Reset(const Pose2& start, double surface_z, const Pose2& believ
   head_ = {};
   const GroundFrame frame{start.x, start.y, start.yaw, surface_z};
   plan_ = Plan{};
-  for (int s = 0; s < 2; ++s) {
-    plan_.feet[s].p = frame.PointAt(0, (s == 0 ? 0.5 : -0.5) * params_.stance_width, 0);
-    plan_.feet[s].yaw = start.yaw;
-  }
+  plan_.feet = FeetAt(frame, params_.stance_width);
   current_ = StandingPosture(plan_.feet);
   current_.q[kNeckPan] = head_.pan;
   current_.q[kNeckTilt] = head_.tilt;
@@ -216,10 +223,7 @@ void Controller::GetUp() {
   seg.head_from = plan_.head;
   seg.head_to = {0.0, 0.0};
   seg.odometry = {-KneelOffset(), 0, 0};
-  for (int s = 0; s < 2; ++s) {
-    plan_.feet[s].p = seg.stand.PointAt(0, (s == 0 ? 0.5 : -0.5) * params_.stance_width, 0);
-    plan_.feet[s].yaw = seg.stand.yaw;
-  }
+  plan_.feet = FeetAt(seg.stand, params_.stance_width);
   plan_.mode = Mode::kStanding;
   plan_.head = seg.head_to;
   queue_.push_back(seg);
@@ -251,16 +255,30 @@ void Controller::Crawl(double dx, double dyaw) {
   }
 }
 
-Posture Controller::StandingPosture(const std::array<FootPlacement, 2>& feet) const {
+namespace {
+
+Posture StandingOver(const Humanoid& h, const ControllerParams& params,
+                     const std::array<FootPlacement, 2>& feet) {
   const GroundFrame f = FeetFrame(feet);
   const Eigen::Vector2d p_xy(f.x, f.y);
-  const internal::LegGeometry& leg = humanoid_.leg(Side::kLeft);
-  double z = f.z + leg.ankle_height + params_.hip_height - leg.p_BH.z();
-  z = std::min(z, internal::MaxBaseHeight(humanoid_, feet, p_xy, f.yaw, params_.max_leg));
+  const internal::LegGeometry& leg = h.leg(Side::kLeft);
+  double z = f.z + leg.ankle_height + params.hip_height - leg.p_BH.z();
+  z = std::min(z, internal::MaxBaseHeight(h, feet, p_xy, f.yaw, params.max_leg));
   Posture posture;
   internal::SetStandingArms(&posture);
-  internal::SolveStance(humanoid_, feet, p_xy, z, f.yaw, &posture);
+  internal::SolveStance(h, feet, p_xy, z, f.yaw, &posture);
   return posture;
+}
+
+}  // namespace
+
+Posture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
+                          const ControllerParams& params) {
+  return StandingOver(h, params, FeetAt({pose.x, pose.y, pose.yaw, surface_z}, params.stance_width));
+}
+
+Posture Controller::StandingPosture(const std::array<FootPlacement, 2>& feet) const {
+  return StandingOver(humanoid_, params_, feet);
 }
 
 Posture Controller::StepPosture(const Segment& seg, double u) const {
@@ -366,14 +384,9 @@ double Controller::KneelOffset() const {
 Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const {
   const internal::LegGeometry& leg = humanoid_.leg(Side::kLeft);
   const double half = humanoid_.sole_half_length();
-  std::array<FootPlacement, 2> feet;
+  const std::array<FootPlacement, 2> feet = FeetAt(stand, params_.stance_width);
   std::array<Eigen::Vector3d, 2> toes;
-  for (int k = 0; k < 2; ++k) {
-    const double y = (k == 0 ? 0.5 : -0.5) * params_.stance_width;
-    feet[k].p = stand.PointAt(0, y, 0);
-    feet[k].yaw = stand.yaw;
-    toes[k] = stand.PointAt(half, y, 0);
-  }
+  for (int k = 0; k < 2; ++k) toes[k] = stand.PointAt(half, (k == 0 ? 0.5 : -0.5) * params_.stance_width, 0);
   const Eigen::Isometry3d X_WS = stand.Isometry();
 
   // key poses of the pelvis: standing, squatting, knees touching down (thighs vertical)

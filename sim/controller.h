@@ -93,6 +93,11 @@ std::vector<HeadAngles> LookAroundSweep(const LookAroundParams& params = {});
 
 enum class Mode { kStanding, kCrawling };
 
+// The standing posture at `pose` (world) on a surface of height surface_z, head looking ahead:
+// soles flat under the hips, knees bent, 0.58 m tall. Controller::Reset starts from it.
+Posture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
+                          const ControllerParams& params = {});
+
 class Controller {
  public:
   // Looks the humanoid up in m (throws SimError if it is not there).
@@ -116,9 +121,10 @@ class Controller {
   void Crawl(double dx, double dyaw);
   // Gets up from crawling to standing.
   void GetUp();
-  // Turns the head to the given neck angles at head_speed.
+  // Turns the head to the given neck angles at head_speed (clamped to the joint ranges).
   void MoveHead(const HeadAngles& target);
-  // Throws std::logic_error if the command does not fit the mode the queue ends in.
+  // Walk, StepOnto and GetDown need the robot standing, Crawl and GetUp crawling, at the end
+  // of the queue; otherwise they throw std::logic_error.
 
   // True when the queue is empty.
   bool Idle() const { return queue_.empty(); }
