@@ -230,7 +230,11 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
 // tracing from the camera to every point (Amanatides-Woo traversal, rays clipped to the grid;
 // within one frame a cell is updated at most once, as occupied if any ray ends in it, else as
 // free if any ray crosses it), verify the floor map against the grid (eq. 20) and insert the
-// floor points that the grid confirms (eq. 19, 21).
+// floor points that the grid confirms (eq. 19, 21). Sensor model detail: a 4 cm layer holding a
+// horizontal floor is only partly free where a ray passes above the floor inside it, so a crossed
+// cell of the layer touching [g - verify_tolerance, g + verify_tolerance] is not updated while the
+// ray stays above g - verify_tolerance in it, for g the column's known floor height and for g the
+// height h of the floor plane the ray ends on. Without this, grazing rays erase far floor cells.
 void UpdateMaps(const MapParams& params, const MapInput& input, MapState* state);
 
 // The FOG of the state's window (eq. 22-25 and algorithm classify). Obstacle heights are the top

@@ -115,8 +115,11 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     const float az = a.z(), dz = d.z();
 
     // marks the layers the ray spans in column `col` between ray parameters ta and tb; a layer
-    // touching a known floor F +- tol stays untouched where the ray runs above F - tol in it
-    // (the layer is only partly free then, and the floor in it stays)
+    // touching a floor height g +- tol stays untouched where the ray runs above g - tol in it (the
+    // layer is only partly free then, and a floor in it stays). g is the column's known floor
+    // and the height of the floor plane the ray ends on: grazing rays to a floor run inside the
+    // layer of that floor for a while before they reach it.
+    const float h_end = (lp.h - float(s.z_min)) * inv_res;
     auto mark_column = [&](float ta, float tb, int hit_layer) {
       const float za = az + ta * dz, zb = az + tb * dz;
       const float z_low = std::min(za, zb);
@@ -127,8 +130,11 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
       for (int iz = lo; iz <= hi; ++iz) {
         if (iz == hit_layer) {
           column[iz] |= kMarkHit;
-        } else if (!(float(iz) <= f + tol_local && std::max(z_low, float(iz)) > f - tol_local)) {
-          column[iz] |= kMarkFree;
+        } else {
+          const float z_in = std::max(z_low, float(iz));
+          const bool above_floor = float(iz) <= f + tol_local && z_in > f - tol_local;
+          const bool above_end = float(iz) <= h_end + tol_local && z_in > h_end - tol_local;
+          if (!above_floor && !above_end) column[iz] |= kMarkFree;
         }
       }
     };

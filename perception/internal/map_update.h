@@ -17,8 +17,8 @@ inline int FastFloor(float x) {
 inline float LogOdds(double p) { return float(std::log(p / (1.0 - p))); }
 
 // Ray traces every point of the input into the 3D grid (eq. 18). A crossed cell in a layer
-// touching [F - tol, F + tol] of a known floor height F of its column is left alone when the ray
-// stays above F - tol in it.
+// touching [g - tol, g + tol] is left alone when the ray stays above g - tol in it, for g the
+// known floor height of its column and for g the height h of the floor plane the ray ends on.
 void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, const MapInput& input,
                      MapState* state);
 

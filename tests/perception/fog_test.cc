@@ -1,18 +1,237 @@
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <vector>
 
 #include <gtest/gtest.h>
 
+#include "perception/internal/map_classify.h"
 #include "perception/internal/map_synthetic.h"
 #include "perception/mapping.h"
 
 namespace fognav::perception {
 namespace {
 
+using internal::AlignedBox;
 using internal::Fig9Cameras;
+using internal::LookAt;
 using internal::Fig9World;
 using internal::MakeIntrinsics;
 using internal::RenderBoxes;
+
+constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+// Runs the perception cycle of a perfect sensor over the camera poses (robot at the origin).
+Fog Perceive(const std::vector<OrientedBox>& world, const std::vector<Eigen::Isometry3d>& cameras,
+             const MapParams& params, MapState* state) {
+  const CameraIntrinsics K = MakeIntrinsics(176, 144, 45.0);
+  for (const Eigen::Isometry3d& X_GC : cameras) {
+    const internal::SyntheticFrame frame = RenderBoxes(world, X_GC, K);
+    MapInput in;
+    in.p_GC = X_GC.translation();
+    in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_GC, {});
+    UpdateMaps(params, in, state);
+  }
+  return ComputeFog(params, *state);
+}
+
+Fog Perceive(const std::vector<OrientedBox>& world, const std::vector<Eigen::Isometry3d>& cameras,
+             const MapParams& params = {}) {
+  MapState state;
+  return Perceive(world, cameras, params, &state);
+}
+
+CellType TypeAt(const Fog& fog, double x, double y) {
+  int ix, iy;
+  fog.window.CellOf(x, y, &ix, &iy);
+  return fog.TypeAt(ix, iy);
+}
+
+float HeightAt(const Fog& fog, double x, double y) {
+  int ix, iy;
+  fog.window.CellOf(x, y, &ix, &iy);
+  return fog.HeightAt(ix, iy);
+}
+
+OrientedBox Floor() { return AlignedBox(-2, 2, -2, 2, -0.01, 0.0); }
+
+// Cameras at `height` on two rings around a target (radius and 1.7 times it), looking at it.
+std::vector<Eigen::Isometry3d> Around(const Eigen::Vector3d& target, double radius, double height) {
+  std::vector<Eigen::Isometry3d> cameras;
+  for (double r : {radius, 1.7 * radius}) {
+    for (int k = 0; k < 8; ++k) {
+      const double a = 2.0 * M_PI * (k + 0.5) / 8.0;
+      const Eigen::Vector3d eye =
+          target + Eigen::Vector3d(r * std::cos(a), r * std::sin(a), height - target.z());
+      cameras.push_back(LookAt(eye, target));
+    }
+  }
+  return cameras;
+}
+
+// Every cell of `fog` whose truth is not unknown and whose estimate is known agrees.
+void ExpectMatchesTruth(const Fog& fog, const std::vector<OrientedBox>& world,
+                        const MapParams& params) {
+  const Fog truth = GroundTruthFog(world, fog.window, params.fog);
+  const FogScore s = ScoreFog(fog, truth);
+  EXPECT_EQ(s.correct, s.observed);
+  int shown = 0;
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      const CellType e = fog.TypeAt(ix, iy), t = truth.TypeAt(ix, iy);
+      if (e == CellType::kUnknown || e == t || ++shown > 12) continue;
+      const Eigen::Vector2d c = fog.window.CellCenter(ix, iy);
+      ADD_FAILURE() << "cell (" << c.x() << ", " << c.y() << "): truth " << CellTypeName(t) << " "
+                    << truth.HeightAt(ix, iy) << ", estimate " << CellTypeName(e) << " "
+                    << fog.HeightAt(ix, iy);
+    }
+  }
+  EXPECT_LE(s.height_error_max, 1e-4);
+}
+
+TEST(Fog, ThreeCentimetreStepIsStairs) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.30, 1.10, -0.5, 0.5, 0.0, 0.03)};
+  const Fog fog = Perceive(world, Around({0.3, 0.0, 0.0}, 1.0, 0.5));
+  EXPECT_EQ(TypeAt(fog, 0.26, 0.02), CellType::kStairs);  // floor cell beside the edge
+  EXPECT_EQ(TypeAt(fog, 0.30, 0.02), CellType::kStairs);  // cell across the edge
+  EXPECT_NEAR(HeightAt(fog, 0.30, 0.02), 0.03, 1e-5);     // the highest floor in the cell
+  EXPECT_EQ(TypeAt(fog, 0.70, 0.02), CellType::kFloor);
+  EXPECT_NEAR(HeightAt(fog, 0.70, 0.02), 0.03, 1e-5);
+  EXPECT_EQ(TypeAt(fog, -0.20, 0.02), CellType::kFloor);
+  EXPECT_NEAR(HeightAt(fog, -0.20, 0.02), 0.0, 1e-5);
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, EightCentimetreStepIsBorder) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.30, 1.10, -0.5, 0.5, 0.0, 0.08)};
+  const Fog fog = Perceive(world, Around({0.3, 0.0, 0.0}, 1.0, 0.5));
+  EXPECT_EQ(TypeAt(fog, 0.26, 0.02), CellType::kBorder);
+  EXPECT_EQ(TypeAt(fog, 0.30, 0.02), CellType::kBorder);
+  EXPECT_EQ(TypeAt(fog, 0.70, 0.02), CellType::kFloor);
+  EXPECT_NEAR(HeightAt(fog, 0.70, 0.02), 0.08, 1e-5);
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, RiserOnACellBoundaryDoesNotMakeAnObstacle) {
+  // the step face at x = 0.32 lies on a cell boundary: its points may land in the lower column
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.32, 1.12, -0.5, 0.5, 0.0, 0.03)};
+  const Fog fog = Perceive(world, Around({0.3, 0.0, 0.0}, 1.0, 0.5));
+  EXPECT_EQ(TypeAt(fog, 0.30, 0.02), CellType::kStairs);
+  EXPECT_EQ(TypeAt(fog, 0.34, 0.02), CellType::kStairs);
+  ExpectMatchesTruth(fog, world, {});
+}
+
+// A block from `underside` to 0.56 m (its top above the standing camera height, so it is no
+// floor) over the floor, seen from `camera_height` looking at the floor and straight ahead.
+Fog Ceiling(double underside, double camera_height, const MapParams& params,
+            std::vector<OrientedBox>* world, MapState* state) {
+  *world = {Floor(), AlignedBox(0.42, 1.02, -0.3, 0.3, underside, std::max(0.56, underside + 0.04))};
+  std::vector<Eigen::Isometry3d> cameras = Around({0.72, 0.02, 0.0}, 1.0, camera_height);
+  for (const Eigen::Isometry3d& X : Around({0.72, 0.02, camera_height}, 1.0, camera_height)) {
+    cameras.push_back(X);
+  }
+  return Perceive(*world, cameras, params, state);
+}
+
+TEST(Fog, CeilingAt40cmIsTunnel) {
+  std::vector<OrientedBox> world;
+  MapState state;
+  const Fog fog = Ceiling(0.40, 0.2, {}, &world, &state);
+  EXPECT_EQ(TypeAt(fog, 0.72, 0.02), CellType::kTunnel);
+  EXPECT_NEAR(HeightAt(fog, 0.72, 0.02), 0.0, 1e-5);  // eq. (25): the floor height
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, CeilingAt25cmIsObstacle) {
+  std::vector<OrientedBox> world;
+  MapState state;
+  const Fog fog = Ceiling(0.25, 0.12, {}, &world, &state);
+  EXPECT_EQ(TypeAt(fog, 0.72, 0.02), CellType::kObstacle);
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, CeilingAt70cmIsFloor) {
+  // with a grid tall enough to hold the ceiling: c > f + h_robot
+  MapParams tall;
+  tall.grid.size_z = 24;
+  std::vector<OrientedBox> world;
+  MapState state;
+  const Fog fog = Ceiling(0.70, 0.5, tall, &world, &state);
+  EXPECT_GT(state.ProbabilityAt({0.72, 0.02, 0.71}), tall.grid.p_occ);
+  EXPECT_EQ(TypeAt(fog, 0.72, 0.02), CellType::kFloor);
+  ExpectMatchesTruth(fog, world, tall);
+  // with the paper's 16 layers the ceiling is above the grid: floor as well
+  MapState state16;
+  const Fog fog16 = Ceiling(0.70, 0.5, {}, &world, &state16);
+  EXPECT_EQ(TypeAt(fog16, 0.72, 0.02), CellType::kFloor);
+}
+
+TEST(Fog, BoxTopIsNotWalkableFromTheFloorAround) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.42, 0.82, -0.22, 0.22, 0.0, 0.2)};
+  const Fog fog = Perceive(world, Around({0.62, 0.0, 0.0}, 1.1, 0.5));
+  EXPECT_EQ(TypeAt(fog, 0.62, 0.02), CellType::kFloor);
+  EXPECT_NEAR(HeightAt(fog, 0.62, 0.02), 0.2, 1e-5);
+  // every way in from the floor crosses border cells on both sides of the edge
+  for (double y = -0.14; y <= 0.14; y += 0.04) {
+    EXPECT_EQ(TypeAt(fog, 0.38, y), CellType::kBorder) << y;
+    EXPECT_EQ(TypeAt(fog, 0.42, y), CellType::kBorder) << y;
+    EXPECT_EQ(TypeAt(fog, 0.82, y), CellType::kBorder) << y;
+    EXPECT_EQ(TypeAt(fog, 0.86, y), CellType::kBorder) << y;
+  }
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, ThinPostIsObstacleWithTheTopOfItsHighestLayer) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.61, 0.65, 0.01, 0.05, 0.0, 0.25)};
+  const Fog fog = Perceive(world, Around({0.63, 0.03, 0.0}, 0.9, 0.5));
+  EXPECT_EQ(TypeAt(fog, 0.63, 0.03), CellType::kObstacle);
+  // eq. (25): 0.25 lies in layer [0.22, 0.26)
+  EXPECT_NEAR(HeightAt(fog, 0.63, 0.03), 0.26, 1e-5);
+  ExpectMatchesTruth(fog, world, {});
+}
+
+TEST(Fog, ClassifyFollowsThePaperAlgorithm) {
+  const FogParams p;
+  auto classify = [&](float f, float o, float c, float dh) {
+    internal::CellQuantities q;
+    q.f = f;
+    q.o = o;
+    q.c = c;
+    q.dh = dh;
+    return internal::Classify(p, q);
+  };
+  EXPECT_EQ(classify(kNegInf, kNegInf, kNegInf, 0), CellType::kUnknown);
+  EXPECT_EQ(classify(kNegInf, 0.1f, 0.0f, 0), CellType::kObstacle);
+  EXPECT_EQ(classify(0.0f, 0.8f, 0.7f, 0), CellType::kFloor);     // c > f + h_robot
+  EXPECT_EQ(classify(0.0f, 0.5f, 0.4f, 0), CellType::kTunnel);    // c > f + h_tunnel
+  EXPECT_EQ(classify(0.0f, 0.3f, 0.25f, 0), CellType::kObstacle);
+  EXPECT_EQ(classify(0.0f, kNegInf, kNegInf, 0.01f), CellType::kFloor);
+  EXPECT_EQ(classify(0.0f, kNegInf, kNegInf, 0.03f), CellType::kStairs);
+  EXPECT_EQ(classify(0.0f, kNegInf, kNegInf, 0.08f), CellType::kBorder);
+  internal::CellQuantities q;
+  q.f = 0.1f;
+  q.o = 0.3f;
+  EXPECT_EQ(internal::FogHeight(CellType::kObstacle, q), 0.3f);
+  EXPECT_EQ(internal::FogHeight(CellType::kTunnel, q), 0.1f);
+  EXPECT_EQ(internal::FogHeight(CellType::kUnknown, q), kNegInf);
+}
+
+TEST(Fog, FloorChangeIsTheLargestDifferenceToKnownNeighbours) {
+  GridWindow w;
+  w.size_x = 3;
+  w.size_y = 3;
+  std::vector<float> floor(9, kNegInf);
+  floor[4] = 0.05f;  // centre
+  floor[0] = 0.0f;
+  floor[8] = 0.12f;
+  std::vector<float> dh, highest;
+  internal::FloorChange(w, floor, 1, &dh, &highest);
+  EXPECT_NEAR(dh[4], 0.07f, 1e-6);  // eq. (24)
+  EXPECT_NEAR(highest[4], 0.12f, 1e-6);
+  EXPECT_NEAR(dh[0], 0.05f, 1e-6);  // its only known neighbour is the centre
+  EXPECT_EQ(dh[2], 0.0f);           // no floor of its own
+}
 
 void PrintScore(const FogScore& s) {
   std::printf("observed %d correct %d accuracy %.4f height cells %d median %.4f max %.4f\n",
@@ -53,8 +272,8 @@ TEST(FogFig9, PerfectSensorMatchesGroundTruth) {
                   CellTypeName(t), truth.HeightAt(ix, iy), CellTypeName(e), fog.HeightAt(ix, iy));
     }
   }
-  WriteMapPictures("/tmp/fig9_est", fog, state, params, robot);
-  WriteMapPictures("/tmp/fig9_truth", truth, state, params, robot);
+  WriteMapPictures(::testing::TempDir() + "fig9_est", fog, state, params, robot);
+  WriteMapPictures(::testing::TempDir() + "fig9_truth", truth, state, params, robot);
   EXPECT_GE(s.accuracy, 0.99);
   EXPECT_LE(s.height_error_max, 0.005);
 }
