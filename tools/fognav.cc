@@ -43,18 +43,25 @@ int Render(const std::string& path, const std::string& out) {
   return kExitOk;
 }
 
-int Perceive(const std::string& path, const std::string& out, const std::string& depth,
-             bool quiet) {
+// Loads the scenario; --depth, when given, replaces its sensor's depth mode.
+fognav::scenarios::Scenario LoadWithDepth(const std::string& path, const std::string& depth) {
   auto scenario = fognav::scenarios::LoadScenario(path);
   if (depth == "ideal") scenario.sensor.depth = fognav::scenarios::DepthMode::kIdeal;
   if (depth == "stereo") scenario.sensor.depth = fognav::scenarios::DepthMode::kStereo;
+  return scenario;
+}
+
+int Perceive(const std::string& path, const std::string& out, const std::string& depth,
+             bool quiet) {
+  auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::RunPerceive(scenario, out, quiet);
   if (!quiet) std::cout << "wrote perception.json, frames/ and maps/ to " << out << "\n";
   return kExitOk;
 }
 
-int Run(const std::string& path, const std::string& out, int dump_every, bool quiet) {
-  auto scenario = fognav::scenarios::LoadScenario(path);
+int Run(const std::string& path, const std::string& out, const std::string& depth,
+        int dump_every, bool quiet) {
+  auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::MissionOptions options;
   options.out_dir = out;
   options.dump_every = dump_every;
@@ -92,6 +99,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output directory")->required();
   run->add_option("--dump-every", dump_every, "write frames and maps every N cycles")
       ->check(CLI::NonNegativeNumber);
+  run->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
+      ->check(CLI::IsMember({"stereo", "ideal"}));
   run->add_flag("--quiet", quiet, "print nothing but errors");
 
   auto* perceive = app.add_subcommand(
@@ -111,7 +120,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return Validate(scenario_path);
-    if (*run) return Run(scenario_path, out_dir, dump_every, quiet);
+    if (*run) return Run(scenario_path, out_dir, depth, dump_every, quiet);
     if (*render) return Render(scenario_path, out_dir);
     if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
   } catch (const InputError& e) {
