@@ -78,6 +78,10 @@ struct PlannerParams {
   double crawl_width = 0.26;     // crawling extent across the heading
   double crawl_offset = 0.10;    // centre of the crawling extent ahead of the robot's origin
   double margin = 0.015;         // safety margin added on every side of both footprints
+  // how far the standing robot's head reaches from its origin (looking down, the head box tilts
+  // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's
+  // origin, so it gets down before its head meets the underside, and up only once clear of it
+  double head_reach = 0.12;
 
   // terrain limits (paper Section 6), metres
   double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
@@ -91,7 +95,13 @@ struct PlannerParams {
   // floor and unknown cells whose centre is within this distance of a tunnel cell's centre
   // allow crawling (the paper's "enlarged area" around a tunnel; unknown ones at the unknown
   // penalty, as the robot may lose sight of the floor under itself), metres
-  double crawl_zone_radius = 0.6;
+  double crawl_zone_radius = 0.8;
+  // Getting down moves the robot's origin this far forward along its heading (the crawling
+  // origin is at the knees, ahead of the feet; the shipped controller's KneelOffset()), getting
+  // up as far back; on the lattice the nearest whole number of steps of the heading, metres.
+  // Both happen in the open: no tunnel cell under the crawling footprint, so the head is down
+  // before it comes under a ceiling and up only once clear of it.
+  double kneel_offset = 0.178;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible
@@ -121,7 +131,7 @@ struct PlannerParams {
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
   // a goal outside the map window is approached by planning to the reachable state minimising
   // path cost + exit_factor * its straight-line distance to the goal
-  double exit_factor = 5.0;
+  double exit_factor = 8.0;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free); metres
   double start_escape_radius = 0.08;

@@ -148,6 +148,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   }
   if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
   if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
+  if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
+  if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   goal_in_window_ = w.Contains(gx, gy);
@@ -157,6 +159,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   for (int k = 0; k < kNumHeadings; ++k) {
     step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * w.resolution;
     turn_angle_[k] = std::abs(WrapAngle(HeadingYaw((k + 1) % kNumHeadings) - HeadingYaw(k)));
+    kneel_steps_[k] = int(std::lround(p.kneel_offset / step_length_[k]));
   }
 
   // footprints: cells whose centres lie in the grown rectangle
@@ -232,8 +235,8 @@ void Lattice::ComputePermissions() {
   // crawl zone: tunnel cells and floor cells near them
   std::vector<uint8_t> tunnel(n);
   for (size_t i = 0; i < n; ++i) tunnel[i] = fog_.type[i] == CellType::kTunnel;
-  std::vector<double> tunnel_d2;
-  SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2);
+  SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2_);
+  const std::vector<double>& tunnel_d2 = tunnel_d2_;
   const double zone_cells = p_.crawl_zone_radius / w.resolution;
   ok_[0].assign(n, 0);
   ok_[1].assign(n, 0);
@@ -500,7 +503,14 @@ void Lattice::ComputeHeuristic() {
     stamp[size_t(node)] = 2;
     const int i = node / 2, q = node % 2;
     const int ix = i % w.size_x, iy = i / w.size_x;
-    if (open[size_t(node ^ 1)]) relax(node ^ 1, h + p_.posture_change_cost);
+    // posture changes move the origin by the kneel offset along the heading; the set of
+    // offsets is symmetric, so the reversed edges are the same
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const int px = ix + kneel_steps_[k] * kSteps[k].dx, py = iy + kneel_steps_[k] * kSteps[k].dy;
+      if (!w.Contains(px, py)) continue;
+      const int other = 2 * w.Index(px, py) + (q ^ 1);
+      if (open[size_t(other)]) relax(other, h + p_.posture_change_cost);
+    }
     // a step up or down crosses cells between its ends up to h_floor beyond its two levels
     const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
     const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
@@ -530,8 +540,22 @@ perception::Pose2 Lattice::PoseOf(int s) const {
   return {c.x(), c.y(), HeadingYaw(HeadingOfState(s))};
 }
 
+bool Lattice::CrawlFootprintInOpen(int cell, int heading) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  for (const CellStep& o : footprint_[1][heading]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (w.Contains(nx, ny) && fog_.type[size_t(w.Index(nx, ny))] == CellType::kTunnel) return false;
+  }
+  return true;
+}
+
 bool Lattice::FootprintFits(int cell, int heading, int q) const {
   const perception::GridWindow& w = fog_.window;
+  if (q == 0) {
+    const double head = (p_.head_reach + p_.margin) / w.resolution + kEps;
+    if (tunnel_d2_[size_t(cell)] <= head * head) return false;
+  }
   const double d2 = blocked_d2_[q][size_t(cell)];
   const double in = inner_radius_cells_[q] - kEps;
   if (in > 0 && d2 <= in * in) return false;
@@ -699,15 +723,28 @@ int Lattice::Successors(int s, Successor* out) {
     translate(across, -1, p_.sidestep_factor, Move::kSidestep);
     turn(left, turn_angle_[k], 1.0);
     turn(right, turn_angle_[right], 1.0);
-    const int down = StateIndex(ix, iy, k, Posture::kCrawling);
-    if (Valid(down)) out[n++] = {down, p_.posture_change_cost, 0.0, Move::kCrawl};
+    // getting down: the origin moves forward to the knees
+    const int m = kneel_steps_[k];
+    const int dx = ix + m * kSteps[k].dx, dy = iy + m * kSteps[k].dy;
+    if (w.Contains(dx, dy) && std::abs(HeightStep(cell, w.Index(dx, dy))) <= p_.h_floor) {
+      const int down = StateIndex(dx, dy, k, Posture::kCrawling);
+      if (Valid(down) && CrawlFootprintInOpen(w.Index(dx, dy), k)) {
+        out[n++] = {down, p_.posture_change_cost, m * step_length_[k], Move::kCrawl};
+      }
+    }
   } else {
     translate(k, +1, p_.crawl_factor, Move::kCrawl);
     translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl);
     turn(left, turn_angle_[k], p_.crawl_factor);
     turn(right, turn_angle_[right], p_.crawl_factor);
-    const int up = StateIndex(ix, iy, k, Posture::kUpright);
-    if (Valid(up)) out[n++] = {up, p_.posture_change_cost, 0.0, Move::kCrawl};
+    // getting up: the origin moves back from the knees to the feet
+    const int m = kneel_steps_[k];
+    const int ux = ix - m * kSteps[k].dx, uy = iy - m * kSteps[k].dy;
+    if (w.Contains(ux, uy) && std::abs(HeightStep(cell, w.Index(ux, uy))) <= p_.h_floor &&
+        CrawlFootprintInOpen(cell, k)) {
+      const int up = StateIndex(ux, uy, k, Posture::kUpright);
+      if (Valid(up)) out[n++] = {up, p_.posture_change_cost, m * step_length_[k], Move::kCrawl};
+    }
   }
   return n;
 }

@@ -115,6 +115,8 @@ class Lattice {
 
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
+  // True if no tunnel cell lies under the crawling footprint at `cell`, `heading`.
+  bool CrawlFootprintInOpen(int cell, int heading) const;
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // fewest lattice steps along its heading that end in a valid standing state on a floor more
   // than h_floor and at most h_stairs higher or lower.
@@ -154,6 +156,8 @@ class Lattice {
   // (border cells block a standing robot only off its own level)
   std::vector<double> blocked_d2_[2];
   std::vector<double> maybe_blocked_d2_[2];
+  int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
+  std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells

@@ -105,8 +105,10 @@ TEST(Lattice, AStarCostEqualsBruteForceDijkstra) {
       }
     }
   }
-  // the worlds are mostly passable, so the comparison means something
-  EXPECT_GT(found, 20) << found << " found, " << none << " without a path";
+  // the worlds are mostly passable, so the comparison means something (goals under the small
+  // tunnels are often out of reach: the robot gets down only where its crawling footprint is
+  // clear of tunnel cells)
+  EXPECT_GT(found, 15) << found << " found, " << none << " without a path";
 }
 
 TEST(Lattice, AStarCostEqualsBruteForceDijkstraFromUnderATable) {
@@ -203,6 +205,16 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
             } else if (std::abs(double(h) - level) > p.h_floor) {
               fits = false;
               off_level = true;
+            }
+          }
+        }
+        // and no tunnel cell within the head's reach
+        const double head = p.head_reach + p.margin;
+        for (int ty = 0; ty < w.size_y; ++ty) {
+          for (int tx = 0; tx < w.size_x; ++tx) {
+            if (fog.TypeAt(tx, ty) == CellType::kTunnel &&
+                std::hypot(tx - ix, ty - iy) * w.resolution <= head + 1e-9) {
+              fits = false;
             }
           }
         }
@@ -331,7 +343,8 @@ TEST(Lattice, CrawlZoneSurroundsTheTunnel) {
   Lattice lattice(fog, {2.2, 0.6}, PlannerParams());
   EXPECT_TRUE(lattice.CrawlAllowedAt(30, 15));  // under the table
   EXPECT_TRUE(lattice.CrawlAllowedAt(20, 15));  // 0.2 m before it
-  EXPECT_FALSE(lattice.CrawlAllowedAt(5, 15));  // 0.8 m before it
+  EXPECT_TRUE(lattice.CrawlAllowedAt(6, 15));   // 0.76 m before it
+  EXPECT_FALSE(lattice.CrawlAllowedAt(3, 15));  // 0.88 m before it
 }
 
 TEST(Lattice, ClearanceCostGrowsWithObstacleHeight) {
