@@ -52,9 +52,10 @@ struct ExecutionLimits {
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
 const std::vector<sim::HeadAngles> kCycleViews = {
     {0.0, 0.75}, {0.45, 0.6}, {0.0, 0.4}, {-0.45, 0.6}, {0.0, 0.15}};
-// while crawling: the camera's elevation above the horizon (rad), up to see an underside
+// while crawling: the camera's elevation above the horizon (rad; the neck tilts within what
+// keeps the head below a 0.30 m ceiling), up to see an underside
 // overhead, down to see the floor ahead
-const std::vector<double> kCrawlElevations = {0.2, -0.35};
+const std::vector<double> kCrawlElevations = {0.15, -0.6};
 
 }  // namespace
 
@@ -82,6 +83,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   controller_params.odometry_noise_yaw = scenario.odometry_noise_yaw;
   controller_params.seed = unsigned(scenario.seed);
   sim::Controller controller(m, controller_params);
+  planner_params.kneel_offset = controller.KneelOffset();
   const sim::Humanoid& humanoid = controller.humanoid();
   controller.Reset({scenario.start.x, scenario.start.y, scenario.start.yaw}, 0.0, m, d);
   sim::Renderer renderer(m);

@@ -121,6 +121,9 @@ class Controller {
   void Crawl(double dx, double dyaw);
   // Gets up from crawling to standing.
   void GetUp();
+  // How far ahead of the standing frame the crawling frame (the knees) lands on GetDown; GetUp
+  // moves the frame back as far. Metres.
+  double KneelOffset() const;
   // Turns the head to the given neck angles at head_speed (clamped to the joint ranges).
   void MoveHead(const HeadAngles& target);
   // Walk, StepOnto and GetDown need the robot standing, Crawl and GetUp crawling, at the end
@@ -194,8 +197,6 @@ class Controller {
   Posture CrawlPostureAt(const internal::GroundFrame& frame) const;
   // kneeling down from the standing frame `stand`: s = 0 stands, s = 1 crawls
   Posture TransitionPosture(const internal::GroundFrame& stand, double s) const;
-  // how far ahead of the standing frame the knees land
-  double KneelOffset() const;
   void CheckContacts(const mjModel* m, const mjData* d);
 
   Humanoid humanoid_;

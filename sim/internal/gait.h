@@ -66,7 +66,7 @@ struct CrawlShape {
   double hand_y = 0.10;
   double knee_angle = 1.85;    // rad, with the thigh vertical: shins slope up backwards
   double ankle_pitch = -0.1;   // rad, toes tucked under, just off the floor
-  double neck_tilt = -0.4;     // rad, head raised to look ahead and down
+  double neck_tilt = -1.4;     // rad, head raised against the torso's pitch to look ahead
   double limb_lift = 0.02;     // m, a swinging hand or knee rises this much
 };
 

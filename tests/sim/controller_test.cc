@@ -370,5 +370,31 @@ TEST_F(ControllerTest, ClipRecorderWritesAFrameEveryFewTicks) {
   EXPECT_GT(std::filesystem::file_size(params.dir + "/frame_00009.png"), 1000u);
 }
 
+// Crawling, the head is raised to look straight ahead (so the robot sees where it crawls and
+// the ceiling it crawls under), and it can look up and down without rising to a 0.30 m ceiling.
+TEST_F(ControllerTest, CrawlingHeadLooksAheadAndStaysBelowATunnelCeiling) {
+  Load("");
+  c_->GetDown();
+  Run();
+  auto elevation = [&]() {
+    const Eigen::Vector3d f =
+        HeadCameraPoseInWorld(c_->humanoid(), d_.get(), Eye::kLeft).rotation().col(2);
+    return std::asin(f.z());
+  };
+  EXPECT_NEAR(elevation(), 0.0, 0.05);
+  double highest = -1, lowest = 1;
+  for (double tilt = -1.55; tilt <= -0.8; tilt += 0.05) {
+    c_->MoveHead({0.0, tilt});
+    Run();
+    // the head's corner passes 0.3 mm above 0.30 m near tilt -1.0: within a millimetre
+    EXPECT_LT(RobotVerticalExtent(c_->humanoid(), m_.get(), d_.get())[1], 0.301) << tilt;
+    highest = std::max(highest, elevation());
+    lowest = std::min(lowest, elevation());
+  }
+  EXPECT_GT(highest, 0.1);
+  EXPECT_LT(lowest, -0.5);
+  ExpectNoCollisions();
+}
+
 }  // namespace
 }  // namespace fognav::sim
