@@ -15,6 +15,7 @@
 
 #include "navigation/planner.h"
 #include "scenarios/perception_cycle.h"
+#include "scenarios/video.h"
 #include "sim/controller.h"
 
 namespace fognav::scenarios {
@@ -68,6 +69,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   if (!trajectory) throw InputError(options.out_dir + "/trajectory.csv: cannot write");
   trajectory << "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n";
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
+  std::unique_ptr<MissionVideo> video;
+  if (!options.video_path.empty()) {
+    video = std::make_unique<MissionVideo>(options.video_path, options.video_fps);
+  }
 
   // world, robot, renderer
   const PerceptionParams perception_params;
@@ -99,8 +104,32 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   int cycle = 0;
   int last_step_logged = 0;
 
+  // the video's frames: the chase camera now, the last head image, the last plan picture
+  perception::RgbImage video_plan_picture;
+  StereoView last_stereo;
+  const int video_every =
+      std::max(1, int(std::lround(options.video_period_s * controller_params.control_rate_hz)));
+  auto add_video_frame = [&]() {
+    const sim::Pose2 t = controller.TruePose(d);
+    const sim::PinholeCamera chase = sim::PinholeCamera::FromFov(
+        ChaseCamera(t.x, t.y, t.yaw, believed_floor_z), MissionVideo::kPanelWidth,
+        MissionVideo::kPanelHeight, 1.0);
+    const sim::RenderedView view = renderer.Render(m, d, chase, {false, false});
+    perception::RgbImage chase_image(view.width, view.height);
+    for (size_t i = 0; i < chase_image.data.size(); ++i) {
+      chase_image.data[i] = {view.rgb[3 * i], view.rgb[3 * i + 1], view.rgb[3 * i + 2]};
+    }
+    char status[160];
+    std::snprintf(status, sizeof(status), "%s   cycle %d   %s   goal %.2f m   t %.1f s",
+                  scenario.name.c_str(), cycle, current_move.c_str(),
+                  std::hypot(t.x - scenario.goal.x(), t.y - scenario.goal.y()),
+                  controller.ticks() * controller.dt());
+    video->Add(chase_image, last_stereo.left, video_plan_picture, status);
+  };
+
   // logs every footstep and accumulates the ground-truth path
   auto on_tick = [&](int) {
+    if (video && controller.ticks() % video_every == 0) add_video_frame();
     if (controller.steps() == last_step_logged) return;
     last_step_logged = controller.steps();
     perception::Pose2 t = ToPerception(controller.TruePose(d));
@@ -120,7 +149,6 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
   // one perception cycle at the head's current pose
   ViewResult last_view;
-  StereoView last_stereo;
   auto perceive = [&]() {
     const perception::Pose2 robot_G = ToPerception(controller.believed_pose());
     const Eigen::Isometry3d X_GR = Planar(robot_G, believed_floor_z);
@@ -181,6 +209,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
                                      : nav::Posture::kUpright;
     plan = nav::Plan(fog, believed, scenario.goal, planner_params, posture);
     timing["planning"].push_back(Ms(start));
+    if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
       if (just_looked) {
         failure = "no_path";

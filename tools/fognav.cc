@@ -60,10 +60,11 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
 }
 
 int Run(const std::string& path, const std::string& out, const std::string& depth,
-        int dump_every, bool quiet) {
+        int dump_every, const std::string& video, bool quiet) {
   auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::MissionOptions options;
   options.out_dir = out;
+  options.video_path = video;
   options.dump_every = dump_every;
   options.quiet = quiet;
   auto outcome = fognav::scenarios::RunMission(scenario, options);
@@ -73,6 +74,7 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
               << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
               << "report: " << out << "/report.json, trajectory: " << out
               << "/trajectory.csv, frames: " << out << "/frames/, maps: " << out << "/maps/\n";
+    if (!video.empty()) std::cout << "video: " << video << "\n";
   }
   return outcome.success ? kExitOk : kExitExpectationFailed;
 }
@@ -91,7 +93,7 @@ int main(int argc, char** argv) {
   render->add_option("scenario", scenario_path, "scenario YAML file")->required();
   render->add_option("--out", out_dir, "output directory")->required();
 
-  std::string depth;
+  std::string depth, video;
   bool quiet = false;
   int dump_every = 0;
   auto* run = app.add_subcommand("run", "run a mission headless");
@@ -101,6 +103,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   run->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
       ->check(CLI::IsMember({"stereo", "ideal"}));
+  run->add_option("--video", video,
+                  "write the mission as a video, FILE.avi or FILE.mp4 (chase camera, head camera, "
+                  "FOG with the plan; twice real time)");
   run->add_flag("--quiet", quiet, "print nothing but errors");
 
   auto* perceive = app.add_subcommand(
@@ -120,7 +125,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return Validate(scenario_path);
-    if (*run) return Run(scenario_path, out_dir, depth, dump_every, quiet);
+    if (*run) return Run(scenario_path, out_dir, depth, dump_every, video, quiet);
     if (*render) return Render(scenario_path, out_dir);
     if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
   } catch (const InputError& e) {

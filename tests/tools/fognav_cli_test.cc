@@ -54,6 +54,11 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
   EXPECT_EQ(RunFognav("render scenarios/stairs_and_table.yaml").exit_code, 2);  // no --out
   EXPECT_EQ(RunFognav("fly").exit_code, 2);
   EXPECT_EQ(RunFognav("perceive scenarios/stairs_and_table.yaml --out /tmp/x --depth lidar").exit_code, 2);
+  // a video format it cannot write is refused before the mission runs
+  Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_video --video /tmp/v.gif");
+  EXPECT_EQ(o.exit_code, 2);
+  EXPECT_NE(o.output.find("/tmp/v.gif: --video: the file must end in .avi or .mp4"),
+            std::string::npos) << o.output;
 }
 
 TEST(FognavCli, UnwritableOutputIsExitCode2) {
