@@ -76,7 +76,32 @@ class Grouper {
       return std::abs(l.p_first.dot(f.n) - f.dist) < p_.d_line &&
              std::abs(l.p_last.dot(f.n) - f.dist) < p_.d_line;
     }
-    return Rms(l.m, f.n, f.dist) < r_max * std::max(l.sigma, p_.sigma_min);  // eq. (10)
+    const double sigma = std::max(LineNoise(l, f.n), p_.sigma_min);
+    if (!(Rms(l.m, f.n, f.dist) < r_max * sigma)) return false;  // eq. (10)
+    if (p_.offset_sigmas <= 0) return true;
+    return OffsetFits(l.m, sigma, f);
+  }
+
+  // the mean offset test: the mean distance of a point set to plane f against its standard
+  // error, for points that spread by sigma across the plane
+  bool OffsetFits(const Moments& m, double sigma, const PlaneFit& f) const {
+    if (p_.offset_sigmas <= 0 || m.n <= 0) return true;
+    const double offset = std::abs(m.b.dot(f.n) / m.n - f.dist);
+    if (offset <= p_.offset_min) return true;
+    const double independent = std::max(1.0, m.n / std::max(p_.correlation_px, 1.0));
+    return offset < p_.offset_sigmas * sigma / std::sqrt(independent);
+  }
+
+  // the spread across plane normal n that the line's noise along the viewing rays gives: the
+  // line's sigma is measured along its normal m in the scan plane, and a depth error dz at ray
+  // q = p / z moves a point by dz q, so by dz |m . q| across the line and dz |n . q| across the
+  // plane
+  double LineNoise(const LineSegment& l, const Eigen::Vector3d& n) const {
+    if (!p_.ray_noise || !(l.m.b.z() > 0)) return l.sigma;
+    const Eigen::Vector3d q = l.m.b / l.m.b.z();
+    const double across_line = std::abs(l.normal.dot(q)), across_plane = std::abs(n.dot(q));
+    if (!(across_line > 0) || across_plane >= across_line) return l.sigma;
+    return l.sigma * across_plane / across_line;
   }
 
   // calls fn(index) for each line of row s whose columns overlap [b, e]
@@ -402,7 +427,8 @@ class Grouper {
         m.Add(rb.m);
         const PlaneFit f = FitPlane(m);
         if (!f.ok || Rms(ra.m, f.n, f.dist) >= p_.r_seed * ra.sigma ||
-            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma)
+            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma || !OffsetFits(ra.m, ra.sigma, f) ||
+            !OffsetFits(rb.m, rb.sigma, f))
           continue;
         ra.m = m;
         ra.fit = f;

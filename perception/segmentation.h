@@ -119,6 +119,23 @@ struct SegmentParams {
   bool trade_lines = true;      // post-processing steps, each may be turned off
   bool trade_points = true;
   bool merge_planes = true;
+  // Extension for range noise along the viewing rays (stereo: depth error grows with z^2 and
+  // lies along the ray). A line's sigma is its spread across the line within its scan plane;
+  // for a plane with normal n the same ray noise spreads points across the plane by
+  // sigma |n . q| / |m . q| (q the ray to the line's centroid, m the line's normal in its scan
+  // plane), which on a floor seen at a grazing angle is several times smaller. If set, eq.
+  // (13, 14) use this expected spread (never more than sigma) in place of sigma.
+  bool ray_noise = false;
+  // Extension: a line also fits a plane only if its mean distance to the plane is below
+  // offset_sigmas standard errors of that mean, sigma_n / sqrt(N / correlation_px) (sigma_n the
+  // spread above; neighbouring stereo depths share their matching window, so only every
+  // correlation_px-th point counts as independent). This separates parallel surfaces a few
+  // centimetres apart (treads) whose lines each scatter more than their offset; offsets up to
+  // offset_min (metres) always pass, as stereo planes bend by a few millimetres. Merging
+  // regions applies the same test to each region's mean offset from the joint plane. 0 = off.
+  double offset_sigmas = 0;
+  double correlation_px = 5;
+  double offset_min = 0.01;
   bool merge_coplanar = false;  // extension: also merge regions that are not neighbours in the
                                 // image (one surface split by an occluder) by the same test;
                                 // off by default as it also joins distinct coplanar surfaces
@@ -131,6 +148,17 @@ inline SegmentParams PreciseRangeParams() {
   SegmentParams p;
   p.c_max = 10;
   p.sigma_min = 0.0003;
+  return p;
+}
+
+// Table 1 settings plus the extensions for range noise along the viewing rays (stereo): the
+// expected spread across the plane in eq. (13, 14) and the mean offset test, at 3 standard
+// errors with offsets up to 5 mm passing.
+inline SegmentParams RayNoiseParams() {
+  SegmentParams p;
+  p.ray_noise = true;
+  p.offset_sigmas = 3;
+  p.offset_min = 0.005;
   return p;
 }
 

@@ -102,7 +102,7 @@ class RowSplitter {
     }
     const bool split = longest >= p_.c_max;
     if (!split || n < 3) {
-      Emit(i0, i1, m, line.sigma);
+      Emit(i0, i1, m, line);
       return;
     }
     double dist;
@@ -119,7 +119,7 @@ class RowSplitter {
     const int k = n >= 3 ? FarthestFromChord(s_, i0, i1, &dist) : i0;
     if (n < 3 || dist < p_.d_cord) {
       const Moments m = RangeMoments(s_, i0, i1);
-      Emit(i0, i1, m, FitLine(m, sp_).sigma);
+      Emit(i0, i1, m, FitLine(m, sp_));
       return;
     }
     Split(i0, k);
@@ -127,13 +127,15 @@ class RowSplitter {
   }
 
  private:
-  void Emit(int i0, int i1, const Moments& m, double sigma) {
+  void Emit(int i0, int i1, const Moments& m, const Line2& line) {
     LineSegment l;
     l.s = row_;
     l.b = s_.u[size_t(i0)];
     l.e = s_.u[size_t(i1)];
     l.m = m;
-    l.sigma = sigma;
+    l.sigma = line.sigma;
+    // the 2D normal (na, nc) in 3D: a along x, c along (0, ty, 1) / k
+    l.normal = Eigen::Vector3d(line.na, line.nc * sp_.ty / sp_.k, line.nc / sp_.k);
     l.p_first = row_points_[l.b].cast<double>();
     l.p_last = row_points_[l.e].cast<double>();
     out_.push_back(l);

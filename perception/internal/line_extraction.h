@@ -22,6 +22,9 @@ struct LineSegment {
   int e = 0;      // last column, inclusive
   Moments m;      // N, sum p, sum p p^T of its points
   double sigma = 0;  // RMS distance of its points to the fitted 2D line, metres
+  // Unit normal of the fitted line within the scan line's plane, camera frame: sigma is the
+  // spread of the points along this direction.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
   Eigen::Vector3d p_first = Eigen::Vector3d::Zero();
   Eigen::Vector3d p_last = Eigen::Vector3d::Zero();
   int plane = -1;
