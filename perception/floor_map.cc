@@ -19,6 +19,38 @@ float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double 
   return best;
 }
 
+namespace {
+
+// eq. (21) for a height h with sigma: within the gate the two are averaged by inverse variance;
+// beyond it the more precise one wins, with the paper's preference for the higher floor
+void FuseHeight(const FloorParams& p, float h, float h_sigma, size_t cell, MapState* state) {
+  MapState& s = *state;
+  float& f = s.floor[cell];
+  float& var = s.floor_var[cell];
+  // each plane counts once per cell and frame: its points share one height
+  if (s.floor_frame_h[cell] == h) return;
+  s.floor_frame_h[cell] = h;
+  const float min_var = float(p.min_sigma * p.min_sigma);
+  const float var_h = std::max(h_sigma * h_sigma, min_var);
+  if (f == -std::numeric_limits<float>::infinity()) {
+    f = h;
+    var = var_h;
+    return;
+  }
+  const float var_f = var > 0 ? var : min_var;  // a height without sigma counts as precise
+  const float gate = float(p.gate), ratio = float(p.replace_ratio);
+  if (std::abs(h - f) <= gate) {
+    const float w = var_f / (var_f + var_h);  // weight of the measurement
+    f += w * (h - f);
+    var = std::max(var_f * var_h / (var_f + var_h), min_var);
+  } else if (h > f ? var_h <= ratio * var_f : var_h * ratio <= var_f) {
+    f = h;  // a higher floor not much less precise, or a lower one much more precise
+    var = var_h;
+  }
+}
+
+}  // namespace
+
 void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* state) {
   MapState& s = *state;
   const float l_occ = LogOdds(params.grid.p_occ);
@@ -31,11 +63,15 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   for (int iy = 0; iy < s.window.size_y; ++iy) {
     for (int ix = 0; ix < s.window.size_x; ++ix) {
       float& f = s.floor[size_t(s.window.Index(ix, iy))];
-      if (f != kNegInf && !(ColumnLogOddsNear(s, ix, iy, f, tol) > l_occ)) f = kNegInf;
+      if (f != kNegInf && !(ColumnLogOddsNear(s, ix, iy, f, tol) > l_occ)) {
+        f = kNegInf;
+        s.floor_var[size_t(s.window.Index(ix, iy))] = 0;
+      }
     }
   }
 
   // eq. (19, 21): insert floor points that the grid confirms
+  s.floor_frame_h.assign(s.floor.size(), std::numeric_limits<float>::quiet_NaN());
   const float inv_res = float(1.0 / s.window.resolution);
   int last_ix = -1, last_iy = -1;
   float last_h = 0;
@@ -53,7 +89,13 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       last_ok = ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ;
     }
     if (!last_ok) continue;
-    float& f = s.floor[size_t(s.window.Index(ix, iy))];
+    const size_t cell = size_t(s.window.Index(ix, iy));
+    float& f = s.floor[cell];
+    if (lp.h_sigma > 0) {
+      FuseHeight(params.floor, lp.h, lp.h_sigma, cell, state);
+      continue;
+    }
+    s.floor_var[cell] = 0;
     if (lp.h < f - gate) continue;  // a lower surface under the floor already known
     if (lp.h > f + gate) {
       f = lp.h;  // a new or higher floor: only the highest is kept

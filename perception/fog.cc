@@ -25,8 +25,22 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
     std::fprintf(stderr, "fognav mapping: ComputeFog supports at most 64 layers, got %d\n", nz);
     std::abort();
   }
+  // only reliable heights enter eq. (24): a height whose sigma exceeds max_height_sigma
+  // (a cell seen only by far, noisy planes) is left out, so it marks no step in its neighbours
+  const bool check_sigma =
+      std::isfinite(params.fog.max_height_sigma) && state.floor_var.size() == state.floor.size();
+  const float max_var = float(params.fog.max_height_sigma * params.fog.max_height_sigma);
+  auto unreliable = [&](size_t i) { return check_sigma && state.floor_var[i] > max_var; };
+  std::vector<float> reliable;
+  const std::vector<float>* floor = &state.floor;
+  if (check_sigma) {
+    reliable = state.floor;
+    for (size_t i = 0; i < reliable.size(); ++i)
+      if (unreliable(i)) reliable[i] = -std::numeric_limits<float>::infinity();
+    floor = &reliable;
+  }
   std::vector<float> dh, highest;
-  internal::FloorChange(w, state.floor, params.fog.neighbourhood_radius, &dh, &highest);
+  internal::FloorChange(w, *floor, params.fog.neighbourhood_radius, &dh, &highest);
 
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -51,7 +65,11 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
         q.c = z_min + float(lowest) * res;
         q.o = z_min + float(top + 1) * res;
       }
-      const CellType t = internal::Classify(params.fog, q);
+      CellType t = internal::Classify(params.fog, q);
+      // an unreliable height is no floor information yet: obstacles above it still count
+      if (unreliable(i) && t != CellType::kObstacle && t != CellType::kTunnel) {
+        t = CellType::kUnknown;
+      }
       fog.type[i] = t;
       fog.height[i] = internal::FogHeight(t, q);
     }

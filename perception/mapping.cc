@@ -90,8 +90,9 @@ double MapState::LayerBottom(int iz) const { return z_min + iz * window.resoluti
 
 size_t MapState::MemoryBytes() const {
   return log_odds.capacity() * sizeof(float) + floor.capacity() * sizeof(float) +
+         floor_var.capacity() * sizeof(float) +
          marks.capacity() + scratch.capacity() * sizeof(float) +
-         floor_local.capacity() * sizeof(float);
+         (floor_local.capacity() + floor_frame_h.capacity()) * sizeof(float);
 }
 
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
@@ -146,6 +147,7 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
   // floor candidates: horizontal, seen from above (so facing up), at least a sole large
   const double cos_tilt = std::cos(params.max_tilt_deg * M_PI / 180.0);
   std::vector<float> plane_h(size_t(num_planes), kNegInf);
+  std::vector<float> plane_sigma(size_t(num_planes), 0.0f);
   for (int k = 0; k < num_planes; ++k) {
     const PlaneMoments& m = moments[size_t(k)];
     if (m.n < 3) continue;
@@ -162,9 +164,12 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     const double length = std::sqrt(12.0 * std::max(0.0, ev(1)));
     if (length < params.min_floor_length || width < params.min_floor_width) continue;
     plane_h[size_t(k)] = float(h);
+    plane_sigma[size_t(k)] = float(std::max(planes.planes[size_t(k)].rms, params.min_height_sigma));
   }
   for (size_t i = 0; i < out.size(); ++i) {
-    if (plane_of[i] >= 0) out[i].h = plane_h[size_t(plane_of[i])];
+    if (plane_of[i] < 0) continue;
+    out[i].h = plane_h[size_t(plane_of[i])];
+    if (out[i].h != kNegInf) out[i].h_sigma = plane_sigma[size_t(plane_of[i])];
   }
   return out;
 }
@@ -189,6 +194,7 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   const size_t cells3 = size_t(state->window.NumCells()) * g.size_z;
   state->log_odds.assign(cells3, 0.0f);
   state->floor.assign(size_t(state->window.NumCells()), kNegInf);
+  state->floor_var.assign(size_t(state->window.NumCells()), 0.0f);
   state->marks.assign(cells3, 0);
   state->scratch.assign(cells3, 0.0f);
 }
@@ -210,6 +216,7 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
   // new local cell (ix, iy) holds old local cell (ix + dx, iy + dy); the rest is unknown
   std::fill(s.scratch.begin(), s.scratch.end(), 0.0f);
   std::vector<float> floor_next(s.floor.size(), kNegInf);
+  std::vector<float> var_next(s.floor.size(), 0.0f);
   const int x_begin = std::max(0, -dx), x_end = std::min(nx, nx - dx);
   for (int iy = std::max(0, -dy); iy < std::min(ny, ny - dy); ++iy) {
     if (x_begin >= x_end) break;
@@ -218,9 +225,11 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
     const size_t len = size_t(x_end - x_begin);
     std::copy_n(s.log_odds.begin() + from * nz, len * nz, s.scratch.begin() + to * nz);
     std::copy_n(s.floor.begin() + from, len, floor_next.begin() + to);
+    std::copy_n(s.floor_var.begin() + from, len, var_next.begin() + to);
   }
   s.log_odds.swap(s.scratch);
   s.floor.swap(floor_next);
+  s.floor_var.swap(var_next);
   s.window = next;
 }
 

@@ -89,6 +89,8 @@ struct LabelParams {
   double self_filter_margin = 0.02;
   // Points farther than this from the camera (metres) are dropped.
   double max_range = std::numeric_limits<double>::infinity();
+  // Floor on the height sigma of a floor-candidate plane, metres.
+  double min_height_sigma = 0.001;
 };
 
 // A range point in the grid frame with the height h of the horizontal plane it belongs to, or
@@ -96,12 +98,16 @@ struct LabelParams {
 struct LabelledPoint {
   Eigen::Vector3f p_G = Eigen::Vector3f::Zero();
   float h = -std::numeric_limits<float>::infinity();
+  // Standard deviation of h in metres: the RMS residual of the plane's points across it, which
+  // grows with range for stereo (depth error ~ z^2). 0 = unknown (then eq. 21 applies as is).
+  float h_sigma = 0;
 };
 
 // Transforms the valid points of `points_C` (camera frame) into the grid frame with the camera
 // pose X_GC (odometry robot pose composed with the head's kinematic pose; the caller computes
 // it), labels each with the height of its floor-candidate plane (mean z of the plane's points in
-// the grid frame) or -infinity, and drops NaN points, points beyond max_range and points inside
+// the grid frame) or -infinity and with that height's sigma (the plane's RMS residual, at least
+// params.min_height_sigma), and drops NaN points, points beyond max_range and points inside
 // the robot's own body `body_G` (boxes in the grid frame from the robot's kinematic pose).
 // `planes.labels` must have the size of `points_C`; label -1 or an empty label image means no
 // plane. Plane normals may point either way; only their axis is used.
@@ -139,6 +145,16 @@ struct OccupancyParams {
 struct FloorParams {
   double gate = 0.01;       // epsilon of eq. (21), metres
   double smoothing = 0.8;   // nu of eq. (21)
+  // Extension for heights with a sigma (LabelledPoint::h_sigma > 0); each cell then keeps the
+  // variance of its height, so that a noisy far view cannot overwrite a precise close one.
+  // Eq. (21) becomes: within the gate epsilon the cell and the measurement are averaged by
+  // inverse variance (each plane counts once per cell and frame; the cell variance never drops
+  // below min_sigma^2, so a cell still follows new data); a higher floor replaces the cell if its
+  // variance is at most replace_ratio times the cell's, a lower one if the cell's is at least
+  // replace_ratio times its own (a precise close view corrects a noisy far one); else the
+  // measurement is ignored.
+  double min_sigma = 0.002;
+  double replace_ratio = 4.0;
   // Eq. (19, 20) read OG(x, y, h) as the highest probability of the layers that
   // [h - verify_tolerance, h + verify_tolerance] touches, so a floor lying on a layer boundary
   // is verified by either layer.
@@ -152,6 +168,11 @@ struct FogParams {
   double h_tunnel = 0.30;  // lowest ceiling to crawl under, metres
   double h_robot = 0.58;   // standing height, metres
   int neighbourhood_radius = 1;  // U(x, y) of eq. (24): (2r+1)^2 cells
+  // Extension: a floor height whose sigma (MapState::floor_var) exceeds this, in metres, is not
+  // reliable enough to tell floor from a step of h_floor: it is left out of eq. (24) for its
+  // neighbours and its cell is unknown unless an obstacle or tunnel lies above it. Heights
+  // without a sigma are reliable. Infinity turns it off (the paper).
+  double max_height_sigma = 0.01;
   // Eq. (22, 23) read "z > h_f" for a layer as "layer bottom >= h_f + obstacle_margin", so the
   // layer holding the floor itself never counts as an obstacle. In GroundTruthFog: a solid counts
   // above the floor where its top exceeds h_f + obstacle_margin.
@@ -189,11 +210,14 @@ struct MapState {
   std::vector<float> log_odds;
   // Floor height per 2D cell (eq. 16), metres, -infinity where there is no floor information.
   std::vector<float> floor;
+  // Variance of each floor height in m^2; 0 where unknown or where heights had no sigma.
+  std::vector<float> floor_var;
   // Scratch, reused between updates: per-cell marks of the current frame, scroll buffer, floor
   // heights in layer units.
   std::vector<uint8_t> marks;
   std::vector<float> scratch;
   std::vector<float> floor_local;
+  std::vector<float> floor_frame_h;  // per cell, the last plane height fused in this frame
 
   bool Empty() const { return log_odds.empty(); }
   // Occupancy probability of local cell (ix, iy, iz) (must be inside).

@@ -111,5 +111,52 @@ TEST(FloorMap, RepeatedNoisyObservationsConverge) {
   EXPECT_LT(std::sqrt(var), 0.003);  // smoothed below the noise of single readings
 }
 
+// Patch(z, h) whose height carries a sigma, as LabelPoints gives it.
+std::vector<LabelledPoint> Patch(float z, float h, float h_sigma) {
+  std::vector<LabelledPoint> points = Patch(z, h);
+  for (LabelledPoint& lp : points) lp.h_sigma = h_sigma;
+  return points;
+}
+
+const Eigen::Vector3d kSide(0.02, 0.02, 0.08);  // camera low to the side: no ray crosses the cell
+
+TEST(FloorMap, HeightsWithSigmaAreAveragedByInverseVarianceOncePerPlaneAndFrame) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.10f, 0.10f, 0.002f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10, 1e-6);
+  // nine points of one plane count as one measurement of variance 0.004^2
+  UpdateMaps(params, Frame(kAbove, Patch(0.104f, 0.104f, 0.004f)), &state);
+  const double w = 0.002 * 0.002 / (0.002 * 0.002 + 0.004 * 0.004);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10 + w * 0.004, 1e-6);
+}
+
+TEST(FloorMap, NoisyHigherHeightDoesNotReplaceAPreciseOne) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.0f, 0.002f)), &state);
+  // 2.5 cm higher but with a 1.5 cm sigma (a far plane): eq. (21) alone would take it as a
+  // higher floor; within 2 sigma it is averaged in with its small weight instead
+  UpdateMaps(params, Frame(kSide, Patch(0.025f, 0.025f, 0.015f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 0.001);
+  // a precise higher floor still replaces it (a box top put on the floor)
+  UpdateMaps(params, Frame(kAbove, Patch(0.10f, 0.10f, 0.002f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10, 1e-6);
+}
+
+TEST(FloorMap, PreciseLowerHeightCorrectsANoisyOne) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.05f, 0.05f, 0.01f)), &state);
+  ASSERT_NEAR(state.FloorAt(0.42, 0.02), 0.05, 1e-6);
+  // lower by more than the gate and at least four times less variance: it replaces the height
+  UpdateMaps(params, Frame(kSide, Patch(0.0f, 0.0f, 0.002f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+  // a lower floor no more precise than the cell's is ignored as in eq. (21)
+  UpdateMaps(params, Frame(kAbove, Patch(0.10f, 0.10f, 0.002f)), &state);
+  UpdateMaps(params, Frame(kSide, Patch(0.0f, 0.0f, 0.002f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10, 1e-6);
+}
+
 }  // namespace
 }  // namespace fognav::perception

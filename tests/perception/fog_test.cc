@@ -191,6 +191,52 @@ TEST(Fog, ThinPostIsObstacleWithTheTopOfItsHighestLayer) {
   ExpectMatchesTruth(fog, world, {});
 }
 
+// Index in the state's 2D arrays of the cell holding grid-frame (x, y).
+size_t CellIndex(const MapState& state, double x, double y) {
+  int ix, iy;
+  state.window.CellOf(x, y, &ix, &iy);
+  return size_t(state.window.Index(ix, iy));
+}
+
+TEST(Fog, UnreliableHeightIsUnknownAndMakesNoStepAround) {
+  // a flat floor seen by a perfect sensor; one cell then holds a height 2 cm off with a sigma
+  // of 1.5 cm, as a far noisy plane leaves it
+  const std::vector<OrientedBox> world = {Floor()};
+  MapParams params;
+  MapState state;
+  Perceive(world, Around({0.6, 0.0, 0.0}, 1.0, 0.5), params, &state);
+  const size_t i = CellIndex(state, 0.62, 0.02);
+  ASSERT_NEAR(state.floor[i], 0.0, 1e-5);
+  ASSERT_LE(state.floor_var[i], params.fog.max_height_sigma * params.fog.max_height_sigma);
+  state.floor[i] = 0.02f;
+  state.floor_var[i] = 2.25e-4f;
+
+  const Fog fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.62, 0.02), CellType::kUnknown);
+  EXPECT_EQ(HeightAt(fog, 0.62, 0.02), kNegInf);
+  EXPECT_EQ(TypeAt(fog, 0.58, 0.02), CellType::kFloor);  // its neighbours see no step
+  EXPECT_EQ(TypeAt(fog, 0.66, 0.06), CellType::kFloor);
+
+  // the paper (no sigma test) takes the height: the cell and its neighbours are stairs
+  params.fog.max_height_sigma = std::numeric_limits<double>::infinity();
+  const Fog paper = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(paper, 0.62, 0.02), CellType::kStairs);
+  EXPECT_EQ(TypeAt(paper, 0.58, 0.02), CellType::kStairs);
+}
+
+TEST(Fog, ObstacleAboveAnUnreliableHeightIsStillAnObstacle) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.61, 0.65, 0.01, 0.05, 0.0, 0.25)};
+  MapParams params;
+  MapState state;
+  Perceive(world, Around({0.63, 0.03, 0.0}, 0.9, 0.5), params, &state);
+  const size_t i = CellIndex(state, 0.63, 0.03);
+  state.floor[i] = 0.0f;
+  state.floor_var[i] = 2.25e-4f;
+
+  const Fog fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.63, 0.03), CellType::kObstacle);
+}
+
 TEST(Fog, ClassifyFollowsThePaperAlgorithm) {
   const FogParams p;
   auto classify = [&](float f, float o, float c, float dh) {

@@ -1,4 +1,5 @@
 // Labelled points (paper Section 5 intro, 5.1): floor candidates, heights, self-filter.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -46,6 +47,34 @@ TEST(LabelPoints, HorizontalPlanesGetTheirHeightInTheGridFrame) {
   EXPECT_GT(floor, 1000);
   EXPECT_GT(step, 1000);
   EXPECT_GT(other, 10);  // the riser of the step
+}
+
+TEST(LabelPoints, FloorHeightsCarryTheirPlanesRmsAsSigma) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.6, 1.2, -0.3, 0.3, 0.0, 0.03)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {1.0, 0, 0});
+  internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  for (size_t k = 0; k < frame.planes.planes.size(); ++k)
+    frame.planes.planes[k].rms = 0.004 * double(k + 1);
+  LabelParams params;
+  params.min_height_sigma = 0.006;
+
+  const std::vector<LabelledPoint> points =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+
+  int floor_points = 0;
+  for (size_t i = 0, j = 0; i < frame.points_C.points.size(); ++i) {
+    if (!PointImage::Valid(frame.points_C.points[i])) continue;
+    const LabelledPoint& lp = points[j++];
+    const int k = frame.planes.labels.data[i];
+    if (lp.h == -std::numeric_limits<float>::infinity()) {
+      EXPECT_EQ(lp.h_sigma, 0.0f);
+      continue;
+    }
+    ASSERT_GE(k, 0);
+    EXPECT_FLOAT_EQ(lp.h_sigma, float(std::max(0.004 * (k + 1), 0.006)));
+    ++floor_points;
+  }
+  EXPECT_GT(floor_points, 2000);
 }
 
 TEST(LabelPoints, TiltedAndDownwardFacingPlanesAreNotFloor) {
