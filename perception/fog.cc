@@ -50,7 +50,13 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       q.dh = dh[i];
       // eq. (22, 23): highest and lowest occupied layers above the floor, from a bit mask of
       // the occupied layers of the column
-      const float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
+      float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
+      // a cell without floor beside a known floor (the strip behind a step down that the eyes
+      // cannot see): what lies no higher than the neighbouring floor + margin is no obstacle
+      if (params.fog.ignore_low_unknown && q.f == -std::numeric_limits<float>::infinity() &&
+          highest[i] != -std::numeric_limits<float>::infinity()) {
+        z_lo = highest[i] + float(params.fog.obstacle_margin);
+      }
       const float* column = state.log_odds.data() + i * nz;
       uint64_t occupied = 0;
       for (int iz = 0; iz < nz; ++iz) occupied |= uint64_t(column[iz] > l_occ) << iz;

@@ -182,6 +182,11 @@ struct FogParams {
   // above the highest floor in U(x, y) + obstacle_margin; a higher neighbour then makes the cell
   // at least stairs or border through eq. (24) anyway.
   bool ignore_risers = true;
+  // The same for a cell without a floor next to cells with one (the strip behind a step down
+  // that the eyes cannot see, where smeared stereo points of the surfaces around land):
+  // occupied layers count as obstacles only above the highest floor in U(x, y) +
+  // obstacle_margin, else the cell stays unknown. Estimates only; GroundTruthFog is exact.
+  bool ignore_low_unknown = true;
   // Ground truth only: floor candidates are upward-facing horizontal box tops no higher than
   // this (the standing camera height) and at least a sole large (LabelParams' sizes).
   double camera_height = 0.50;

@@ -237,6 +237,33 @@ TEST(Fog, ObstacleAboveAnUnreliableHeightIsStillAnObstacle) {
   EXPECT_EQ(TypeAt(fog, 0.63, 0.03), CellType::kObstacle);
 }
 
+TEST(Fog, LowOccupancyInACellWithoutFloorBesideAFloorIsUnknownNotObstacle) {
+  // a flat floor seen by a perfect sensor; then one cell loses its floor height but keeps its
+  // floor layer occupied (hidden behind a step down, hit by smeared points), another also has
+  // an occupied layer 10 cm up
+  const std::vector<OrientedBox> world = {Floor()};
+  MapParams params;
+  MapState state;
+  Perceive(world, Around({0.6, 0.0, 0.0}, 1.0, 0.5), params, &state);
+  const size_t low = CellIndex(state, 0.62, 0.02), high = CellIndex(state, 0.62, -0.14);
+  for (size_t i : {low, high}) {
+    state.floor[i] = kNegInf;
+    state.floor_var[i] = 0;
+    state.log_odds[i * size_t(state.size_z)] = 2.0f;  // layer 0 occupied
+  }
+  state.log_odds[high * size_t(state.size_z) + 3] = 2.0f;  // layer 3: [0.10, 0.14)
+
+  const Fog fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.62, 0.02), CellType::kUnknown);
+  EXPECT_EQ(TypeAt(fog, 0.62, -0.14), CellType::kObstacle);
+  EXPECT_NEAR(HeightAt(fog, 0.62, -0.14), 0.14, 1e-5);
+
+  // the paper: any occupied layer of a cell without floor is an obstacle
+  params.fog.ignore_low_unknown = false;
+  const Fog paper = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(paper, 0.62, 0.02), CellType::kObstacle);
+}
+
 TEST(Fog, ClassifyFollowsThePaperAlgorithm) {
   const FogParams p;
   auto classify = [&](float f, float o, float c, float dh) {
