@@ -168,11 +168,11 @@ struct FogParams {
   double h_tunnel = 0.30;  // lowest ceiling to crawl under, metres
   double h_robot = 0.58;   // standing height, metres
   int neighbourhood_radius = 1;  // U(x, y) of eq. (24): (2r+1)^2 cells
-  // Extension: a floor height whose sigma (MapState::floor_var) exceeds this, in metres, is not
-  // reliable enough to tell floor from a step of h_floor: it is left out of eq. (24) for its
-  // neighbours and its cell is unknown unless an obstacle or tunnel lies above it. Heights
-  // without a sigma are reliable. Infinity turns it off (the paper).
-  double max_height_sigma = 0.01;
+  // Extension: a floor height whose sigma (MapState::floor_var) exceeds this, in metres, cannot
+  // tell floor from a step of h_floor: it is left out of eq. (24) for its neighbours and its
+  // cell is unknown unless an obstacle or tunnel lies above it. Heights without a sigma are
+  // reliable. The default is h_floor; infinity turns it off (the paper).
+  double max_height_sigma = 0.015;
   // Eq. (22, 23) read "z > h_f" for a layer as "layer bottom >= h_f + obstacle_margin", so the
   // layer holding the floor itself never counts as an obstacle. In GroundTruthFog: a solid counts
   // above the floor where its top exceeds h_f + obstacle_margin.

@@ -200,7 +200,7 @@ size_t CellIndex(const MapState& state, double x, double y) {
 
 TEST(Fog, UnreliableHeightIsUnknownAndMakesNoStepAround) {
   // a flat floor seen by a perfect sensor; one cell then holds a height 2 cm off with a sigma
-  // of 1.5 cm, as a far noisy plane leaves it
+  // of 2 cm, as a far noisy plane leaves it
   const std::vector<OrientedBox> world = {Floor()};
   MapParams params;
   MapState state;
@@ -209,7 +209,7 @@ TEST(Fog, UnreliableHeightIsUnknownAndMakesNoStepAround) {
   ASSERT_NEAR(state.floor[i], 0.0, 1e-5);
   ASSERT_LE(state.floor_var[i], params.fog.max_height_sigma * params.fog.max_height_sigma);
   state.floor[i] = 0.02f;
-  state.floor_var[i] = 2.25e-4f;
+  state.floor_var[i] = 4e-4f;
 
   const Fog fog = ComputeFog(params, state);
   EXPECT_EQ(TypeAt(fog, 0.62, 0.02), CellType::kUnknown);
@@ -231,7 +231,7 @@ TEST(Fog, ObstacleAboveAnUnreliableHeightIsStillAnObstacle) {
   Perceive(world, Around({0.63, 0.03, 0.0}, 0.9, 0.5), params, &state);
   const size_t i = CellIndex(state, 0.63, 0.03);
   state.floor[i] = 0.0f;
-  state.floor_var[i] = 2.25e-4f;
+  state.floor_var[i] = 4e-4f;
 
   const Fog fog = ComputeFog(params, state);
   EXPECT_EQ(TypeAt(fog, 0.63, 0.03), CellType::kObstacle);
