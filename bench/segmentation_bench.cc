@@ -93,6 +93,32 @@ void BM_SegmentationUb(benchmark::State& state) {
 BENCHMARK(BM_SegmentationUb)
     ->Name("SegmentationUB/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
 
+// The same scene with the head stereo's depth noise (0.13 px disparity error at f = 212 px and
+// B = 5 cm: 12 mm at 1 m along the ray), segmented with Table 1 (arg 0) or with the ray noise
+// extensions of RayNoiseParams (arg 1).
+void BM_SegmentationHeadStereoNoise(benchmark::State& state) {
+  static const BenchInput in = [] {
+    BenchInput b;
+    b.K = internal::SceneIntrinsics(176, 144);
+    b.truth = internal::RenderScene(BenchScene(), b.K, BenchCamera());
+    DepthImage noisy = b.truth.depth;
+    internal::AddDepthNoise(&noisy, 0.0123, 1);
+    b.points = DepthPointImage(noisy, b.K);
+    return b;
+  }();
+  const SegmentParams p = state.range(0) ? RayNoiseParams() : SegmentParams();
+  PlaneSet set;
+  for (auto _ : state) {
+    set = SegmentPlanes(in.points, p);
+    benchmark::DoNotOptimize(set.planes.data());
+  }
+  SetScoreCounters(state, set.labels, in);
+}
+BENCHMARK(BM_SegmentationHeadStereoNoise)
+    ->Name("SegmentationHeadNoise/176x144/table1")->Arg(0)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SegmentationHeadStereoNoise)
+    ->Name("SegmentationHeadNoise/176x144/ray_noise")->Arg(1)->Unit(benchmark::kMillisecond);
+
 void BM_Stereo(benchmark::State& state) {
   const auto K = internal::SceneIntrinsics(int(state.range(0)), int(state.range(1)));
   RgbImage left, right;
