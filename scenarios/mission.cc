@@ -183,6 +183,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
   // the closed loop
   std::string failure;
+  std::string failure_detail;  // why: the planner's no-path reason, the colliding geoms
   nav::PlanResult plan;
   perception::Fog fog;
   look_around();
@@ -192,6 +193,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
       failure = "collision";
+      const sim::Collision& c = controller.collisions().front();
+      failure_detail = c.robot_name + " hit " + c.world_name;
       break;
     }
     if (cycle >= scenario.max_cycles || controller.steps() >= scenario.max_steps) {
@@ -213,6 +216,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
       if (just_looked) {
         failure = "no_path";
+        // a plan that ends where it starts: the best reachable state toward the goal is here
+        failure_detail =
+            plan.status == nav::PlanStatus::kOk ? "no_progress" : nav::NoPathReasonName(plan.reason);
         break;
       }
       look_around();
@@ -385,6 +391,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       {"reached_goal", reached_goal},
       {"goal_distance", goal_distance},
       {"failure", failure.empty() ? nlohmann::json(nullptr) : nlohmann::json(failure)},
+      {"failure_detail", failure_detail.empty() ? nlohmann::json(nullptr)
+                                                : nlohmann::json(failure_detail)},
       {"cycles", cycle},
       {"steps", controller.steps()},
       {"actions", actions},
