@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "scenarios/clips.h"
 #include "scenarios/mission.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
@@ -79,6 +80,15 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
   return outcome.success ? kExitOk : kExitExpectationFailed;
 }
 
+int Clip(const std::string& motion, const std::string& out, int every, bool quiet) {
+  const auto result = fognav::scenarios::RecordClip(motion, out, every);
+  if (!quiet) {
+    std::cout << motion << ": " << result.frames << " frames and strip.png in " << out << ", "
+              << result.collisions << " collisions\n";
+  }
+  return result.collisions == 0 ? kExitOk : kExitExpectationFailed;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -116,6 +126,18 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"stereo", "ideal"}));
   perceive->add_flag("--quiet", quiet, "print nothing but errors");
 
+  std::string motion;
+  int every = 5;
+  auto* clip = app.add_subcommand(
+      "clip", "dump frames of one motion of the stepping controller from an external camera");
+  clip->add_option("motion", motion, "walk, sidestep, turn, stairs or crawl")
+      ->required()
+      ->check(CLI::IsMember(fognav::scenarios::ClipMotions()));
+  clip->add_option("--out", out_dir, "output directory")->required();
+  clip->add_option("--every", every, "control ticks between frames (default 5)")
+      ->check(CLI::PositiveNumber);
+  clip->add_flag("--quiet", quiet, "print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -128,6 +150,7 @@ int main(int argc, char** argv) {
     if (*run) return Run(scenario_path, out_dir, depth, dump_every, video, quiet);
     if (*render) return Render(scenario_path, out_dir);
     if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
+    if (*clip) return Clip(motion, out_dir, every, quiet);
   } catch (const InputError& e) {
     std::cerr << "fognav: " << e.what() << "\n";
     return kExitBadInput;
