@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "navigation/planner.h"
 #include "sim/controller.h"
 
 namespace fognav::scenarios {
@@ -187,6 +188,19 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   perception::FogScore fog_score = perception::ScoreFog(fog, truth);
   perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
   WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
+  // what the planner makes of the perceived map: the plan a mission would start with
+  navigation::PlannerParams planner_params;
+  planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
+  planner_params.kneel_offset = controller.KneelOffset();
+  const navigation::PlanResult plan =
+      navigation::Plan(fog, robot_G, scenario.goal, planner_params);
+  WritePng(navigation::DrawPlanPicture(fog, robot_G, plan, scenario.goal),
+           out_dir + "/maps/plan.png");
+  nlohmann::json plan_moves = nlohmann::json::object();
+  for (const navigation::PathSegment& run : navigation::SegmentPath(plan)) {
+    plan_moves[navigation::MoveName(run.move)] =
+        plan_moves.value(navigation::MoveName(run.move), 0) + 1;
+  }
 
   perception::SegmentationScore overall = perception::CombineScores(scores);
   nlohmann::json confusion = nlohmann::json::object();
@@ -209,6 +223,12 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
        {{"median", fog_score.height_error_median}, {"max", fog_score.height_error_max},
         {"cells", fog_score.height_cells}}},
       {"map_memory_bytes", maps.MemoryBytes()},
+      {"plan",
+       {{"status", navigation::PlanStatusName(plan.status)},
+        {"reason", navigation::NoPathReasonName(plan.reason)},
+        {"reaches_goal", plan.reaches_goal},
+        {"length", plan.length},
+        {"runs", plan_moves}}},
       {"timing_ms",
        {{"stereo", Median(stereo_ms)},
         {"segmentation", Median(segmentation_ms)},

@@ -6,6 +6,7 @@
 #include <string>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -30,6 +31,26 @@ std::string TempFile(const std::string& name, const std::string& text) {
   std::string path = (std::filesystem::temp_directory_path() / name).string();
   std::ofstream(path) << text;
   return path;
+}
+
+// issue 3's ideal-depth targets on the course's look-around, scored against the renderer's
+// surface ids, and the outputs a reviewer opens
+TEST(FognavCli, PerceiveScoresTheCourseAgainstGroundTruth) {
+  const std::string out = (std::filesystem::temp_directory_path() / "fognav_perceive").string();
+  std::filesystem::remove_all(out);
+  Outcome o = RunFognav("perceive scenarios/stairs_and_table.yaml --out " + out +
+                        " --depth ideal --quiet");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/perception.json"));
+  EXPECT_GE(report["views"].size(), 10u);  // the whole start sweep
+  EXPECT_GE(report["segmentation"]["accuracy"].get<double>(), 0.98);
+  EXPECT_GE(report["segmentation"]["coverage"].get<double>(), 0.95);
+  EXPECT_LT(report["floor_height_error"]["median"].get<double>(), 0.005);
+  EXPECT_EQ(report["plan"]["status"], "ok");
+  for (const char* file : {"frames/view00_left.png", "frames/view00_segments.png", "maps/fog.png",
+                           "maps/fog_truth.png", "maps/plan.png", "maps/fog.yaml"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
 }
 
 TEST(FognavCli, ValidateAcceptsTheCourse) {
