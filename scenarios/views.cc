@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "sim/controller.h"
+
 namespace fognav::scenarios {
 
 sim::WorldSpec MakeWorldSpec(const Scenario& scenario, bool with_robot) {
@@ -35,29 +37,10 @@ perception::CameraIntrinsics HeadIntrinsics(const SensorSettings& sensor) {
 }
 
 Eigen::Isometry3d PlaceRobot(sim::World* world, const perception::Pose2& pose) {
-  const mjModel* m = world->model();
-  mjData* d = world->data();
-  int root = mj_name2id(m, mjOBJ_BODY, "robot_base");
-  int eye = mj_name2id(m, mjOBJ_CAMERA, "robot_left_eye");
-  if (root < 0 || eye < 0 || m->body_jntnum[root] < 1) {
-    throw sim::SimError("the world has no humanoid with a free base and a robot_left_eye camera");
-  }
-  // free joint: position, then orientation quaternion (w, x, y, z); height as in the model
-  const int q = m->jnt_qposadr[m->body_jntadr[root]];
-  mju_copy(d->qpos, m->qpos0, m->nq);
-  d->qpos[q + 0] = pose.x;
-  d->qpos[q + 1] = pose.y;
-  d->qpos[q + 3] = std::cos(pose.yaw / 2);
-  d->qpos[q + 4] = 0;
-  d->qpos[q + 5] = 0;
-  d->qpos[q + 6] = std::sin(pose.yaw / 2);
-  mj_kinematics(m, d);
-  // MuJoCo cameras look along -z with y up; OpenCV's look along +z with y down
-  Eigen::Map<const Eigen::Matrix<mjtNum, 3, 3, Eigen::RowMajor>> R_WE(d->cam_xmat + 9 * eye);
-  Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
-  X_WL.linear() = R_WE * Eigen::Vector3d(1, -1, -1).asDiagonal();
-  X_WL.translation() = Eigen::Map<const Eigen::Vector3d>(d->cam_xpos + 3 * eye);
-  return X_WL;
+  // the standing posture a mission starts from (throws SimError if there is no humanoid)
+  sim::Controller controller(world->model());
+  controller.Reset({pose.x, pose.y, pose.yaw}, 0.0, world->model(), world->data());
+  return sim::HeadCameraPoseInWorld(controller.humanoid(), world->data(), sim::Eye::kLeft);
 }
 
 StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,

@@ -42,5 +42,21 @@ TEST(WorldFromScenario, HoldsExactlyTheListedObjects) {
   EXPECT_EQ(solids.size(), 17u);
 }
 
+// `fognav render` shows what the robot's left eye sees standing at the start: the eye sits in
+// the head above the start pose (a stale camera pose once rendered from behind the robot)
+TEST(WorldFromScenario, PlaceRobotPutsTheEyeInTheHeadAtTheStart) {
+  Scenario scenario = LoadScenario("scenarios/stairs_and_table.yaml");
+  sim::World world(MakeWorldSpec(scenario));
+  const perception::Pose2 start{1.0, 0.1, M_PI / 2};
+  const Eigen::Isometry3d X_WL = PlaceRobot(&world, start);
+  EXPECT_NEAR(X_WL.translation().x(), start.x, 0.06);
+  EXPECT_NEAR(X_WL.translation().y(), start.y, 0.06);
+  EXPECT_GT(X_WL.translation().z(), 0.45);
+  EXPECT_LT(X_WL.translation().z(), 0.58);
+  // looking ahead along the start heading (OpenCV: camera z forward)
+  const Eigen::Vector3d forward = X_WL.rotation().col(2);
+  EXPECT_GT(forward.dot(Eigen::Vector3d(std::cos(start.yaw), std::sin(start.yaw), 0)), 0.8);
+}
+
 }  // namespace
 }  // namespace fognav::scenarios
