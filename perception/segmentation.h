@@ -209,6 +209,21 @@ struct SegmentationScore {
 SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& truth_surface_ids,
                                     const DepthImage& truth_depth_m, const ScoreParams& p = {});
 
+// Range data against the renderer's depth, in disparity pixels (d = fx B / z), as stereo
+// benchmarks score it; over pixels whose true depth is finite and at most max_depth_m.
+struct StereoScore {
+  int64_t pixels = 0;           // pixels with a true depth in range
+  double valid = 0;             // share of them with a point
+  double median_error_px = 0;   // median |d - d_true| over valid pixels
+  double bad_1px = 0;           // share of valid pixels with |d - d_true| > 1 px
+  double median_depth_error = 0;  // median |z - z_true|, metres
+};
+
+// Scores a point image (camera frame, NaN none) against true depth (metres along the optical
+// axis, NaN none) of the same size.
+StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_m,
+                        const CameraIntrinsics& K, double max_depth_m = 2.5);
+
 // Pools scores of several views: counts add, accuracy and coverage are recomputed from the
 // pixel sums.
 SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores);

@@ -2,6 +2,8 @@
 // of Hoover et al. (1996).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <unordered_map>
 #include <vector>
 
@@ -169,6 +171,42 @@ SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores) {
   }
   Ratios(&total);
   return total;
+}
+
+StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_m,
+                        const CameraIntrinsics& K, double max_depth_m) {
+  if (points.width != truth_depth_m.width || points.height != truth_depth_m.height) {
+    std::fprintf(stderr, "fognav ScoreStereo: point image %dx%d, depth %dx%d\n", points.width,
+                 points.height, truth_depth_m.width, truth_depth_m.height);
+    std::abort();
+  }
+  StereoScore score;
+  std::vector<double> disparity_errors, depth_errors;
+  const double fb = K.fx * K.baseline;
+  int64_t bad = 0;
+  for (size_t i = 0; i < truth_depth_m.data.size(); ++i) {
+    const double z_true = truth_depth_m.data[i];
+    if (!std::isfinite(z_true) || z_true <= 0 || z_true > max_depth_m) continue;
+    ++score.pixels;
+    const double z = points.points[i].z();
+    if (!std::isfinite(z) || z <= 0) continue;
+    const double e = std::abs(fb / z - fb / z_true);
+    disparity_errors.push_back(e);
+    depth_errors.push_back(std::abs(z - z_true));
+    if (e > 1.0) ++bad;
+  }
+  if (!disparity_errors.empty()) {
+    score.valid = double(disparity_errors.size()) / double(score.pixels);
+    score.bad_1px = double(bad) / double(disparity_errors.size());
+    auto median = [](std::vector<double>* v) {
+      auto mid = v->begin() + v->size() / 2;
+      std::nth_element(v->begin(), mid, v->end());
+      return *mid;
+    };
+    score.median_error_px = median(&disparity_errors);
+    score.median_depth_error = median(&depth_errors);
+  }
+  return score;
 }
 
 }  // namespace fognav::perception

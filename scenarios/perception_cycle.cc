@@ -20,6 +20,13 @@ double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
+nlohmann::json StereoJson(const perception::StereoScore& s) {
+  return {{"valid", s.valid},
+          {"median_error_px", s.median_error_px},
+          {"bad_1px", s.bad_1px},
+          {"median_depth_error", s.median_depth_error}};
+}
+
 nlohmann::json ScoreJson(const perception::SegmentationScore& s) {
   return {{"accuracy", s.accuracy}, {"coverage", s.coverage}, {"correct", s.correct},
           {"over", s.over},         {"under", s.under},       {"missed", s.missed},
@@ -79,6 +86,9 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
     truth_depth = perception::Subsample2x(truth_depth);
   }
   result.stereo_ms = MillisecondsSince(start);
+  result.stereo = perception::ScoreStereo(
+      result.points, truth_depth,
+      params.subsample ? perception::Subsample2x(view.intrinsics) : view.intrinsics);
 
   // planes, scored against the surfaces the renderer saw
   start = Clock::now();
@@ -140,6 +150,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   nlohmann::json views = nlohmann::json::array();
   std::vector<perception::SegmentationScore> scores;
   std::vector<double> stereo_ms, segmentation_ms, mapping_ms;
+  std::vector<perception::StereoScore> ranges;
   const auto sweep = StartSweep();
   for (size_t i = 0; i < sweep.size(); ++i) {
     controller.MoveHead(sweep[i]);
@@ -163,12 +174,14 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
     std::snprintf(prefix, sizeof(prefix), "view%02zu", i);
     WriteViewFrames(view, result, out_dir + "/frames", prefix);
     scores.push_back(result.segmentation);
+    ranges.push_back(result.stereo);
     stereo_ms.push_back(result.stereo_ms);
     segmentation_ms.push_back(result.segmentation_ms);
     mapping_ms.push_back(result.mapping_ms);
     nlohmann::json v = {{"pan", sweep[i].pan},
                         {"tilt", sweep[i].tilt},
                         {"segmentation", ScoreJson(result.segmentation)},
+                        {"range", StereoJson(result.stereo)},
                         {"timing_ms",
                          {{"stereo", result.stereo_ms},
                           {"segmentation", result.segmentation_ms},
@@ -203,6 +216,23 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   }
 
   perception::SegmentationScore overall = perception::CombineScores(scores);
+  // range data over all views: shares weighted by pixels, errors the median of the views'
+  perception::StereoScore range;
+  std::vector<double> error_px, error_m;
+  double valid_px = 0, bad_px = 0;
+  for (const perception::StereoScore& r : ranges) {
+    range.pixels += r.pixels;
+    valid_px += r.valid * double(r.pixels);
+    bad_px += r.bad_1px * r.valid * double(r.pixels);
+    if (r.valid > 0) {
+      error_px.push_back(r.median_error_px);
+      error_m.push_back(r.median_depth_error);
+    }
+  }
+  range.valid = range.pixels > 0 ? valid_px / double(range.pixels) : 0;
+  range.bad_1px = valid_px > 0 ? bad_px / valid_px : 0;
+  range.median_error_px = Median(error_px);
+  range.median_depth_error = Median(error_m);
   nlohmann::json confusion = nlohmann::json::object();
   for (int t = 0; t < perception::kNumCellTypes; ++t) {
     nlohmann::json row = nlohmann::json::object();
@@ -216,6 +246,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
       {"depth", scenario.sensor.depth == DepthMode::kStereo ? "stereo" : "ideal"},
       {"views", views},
       {"segmentation", ScoreJson(overall)},
+      {"range", StereoJson(range)},
       {"fog_accuracy", fog_score.accuracy},
       {"fog_observed_cells", fog_score.observed},
       {"fog_confusion", confusion},

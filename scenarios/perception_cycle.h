@@ -35,6 +35,7 @@ struct ViewResult {
   perception::Image<float> disparity;   // pixels, NaN where invalid; empty in ideal mode
   perception::PlaneSet planes;
   perception::SegmentationScore segmentation;
+  perception::StereoScore stereo;  // range data against the renderer's depth
   double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0;
 };
 

@@ -106,6 +106,34 @@ TEST(Stereo, UntexturedPairGivesNoPoints) {
   EXPECT_LT(valid, 176 * 144 / 20);
 }
 
+// The range score in disparity pixels: a wall at 2 m seen with disparity errors of 0.1 px on
+// most pixels, 2 px on a tenth of them, and no point on a fifth.
+TEST(ScoreStereo, MeasuresDisparityErrorsValidShareAndOutliers) {
+  CameraIntrinsics K;
+  K.width_px = 10;
+  K.height_px = 10;
+  K.fx = K.fy = 200;
+  K.cx = K.cy = 5;
+  K.baseline = 0.05;
+  const double fb = K.fx * K.baseline, z_true = 2.0;
+  DepthImage truth(10, 10);
+  PointImage points(10, 10);
+  for (int i = 0; i < 100; ++i) {
+    truth.data[size_t(i)] = float(z_true);
+    if (i % 5 == 4) continue;  // no point
+    const double d = fb / z_true + (i % 10 == 0 ? 2.0 : 0.1);
+    points.points[size_t(i)] = Eigen::Vector3f(0, 0, float(fb / d));
+  }
+  truth.data[0] = std::numeric_limits<float>::quiet_NaN();  // not scored
+  truth.data[1] = 3.0f;                                      // beyond max_depth_m
+  const StereoScore s = ScoreStereo(points, truth, K, 2.5);
+  EXPECT_EQ(s.pixels, 98);
+  EXPECT_NEAR(s.valid, 78.0 / 98.0, 1e-9);
+  EXPECT_NEAR(s.median_error_px, 0.1, 1e-4);
+  EXPECT_NEAR(s.bad_1px, 9.0 / 78.0, 1e-9);
+  EXPECT_NEAR(s.median_depth_error, z_true - fb / (fb / z_true + 0.1), 1e-5);
+}
+
 TEST(DepthPointImage, BackProjectsAlongTheOpticalAxis) {
   CameraIntrinsics K = SceneIntrinsics(8, 6);
   DepthImage depth(8, 6, 2.0f);
