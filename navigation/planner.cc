@@ -56,13 +56,18 @@ const char* NoPathReasonName(NoPathReason reason) {
   return "invalid";
 }
 
-PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
-                const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
+namespace {
+
+// A* from the start to the goal region, or with `toward` to the state of least cost plus
+// exit_factor times its distance to the goal
+PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
+                  const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture,
+                  bool toward) {
   // per-state arrays and the open list are reused between calls on this thread
   thread_local internal::SearchMemory thread_memory;
   thread_local std::vector<internal::OpenEntry> thread_heap;
   internal::SearchMemory& memory = thread_memory;
-  internal::Lattice lattice(fog, goal_G, p, &memory);
+  internal::Lattice lattice(fog, goal_G, p, &memory, toward);
 
   // where the search may start and end
   const std::vector<internal::Seed> seeds = lattice.StartSeeds(start_G, start_posture);
@@ -163,6 +168,19 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                       lattice.FloorHeight(lattice.CellOfState(chain[i]))});
   }
   return r;
+}
+
+}  // namespace
+
+PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
+                const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
+  return Search(fog, start_G, goal_G, p, start_posture, /*toward=*/false);
+}
+
+PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
+                      const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                      Posture start_posture) {
+  return Search(fog, start_G, goal_G, p, start_posture, /*toward=*/true);
 }
 
 std::vector<PathSegment> SegmentPath(const PlanResult& plan) {

@@ -59,7 +59,8 @@ inline constexpr int kNumHeadings = 16;
 // nearest known floor's), so a standing robot is always level: its feet never reach onto another
 // tread, and it may stand at the foot of a wall or block or on the rim of a platform (the
 // paper's border marks both sides of a drop) but never across the drop; crawling, tunnel cells
-// and floor or unknown cells near them. Obstacle cells never.
+// and floor or unknown cells near them, and border cells near them on the origin's level (the
+// foot of a wall beside a table). Obstacle cells never.
 // Moves: walks, side-steps and crawls go to a neighbouring cell whose floor is within h_floor.
 // A step up or down goes forward along the heading, facing the floor's height gradient, by the
 // fewest lattice steps (at most max_step_length) that lead from a standing pose on floor h0 to
@@ -99,9 +100,15 @@ struct PlannerParams {
   // Getting down moves the robot's origin this far forward along its heading (the crawling
   // origin is at the knees, ahead of the feet; the shipped controller's KneelOffset()), getting
   // up as far back; on the lattice the nearest whole number of steps of the heading, metres.
-  // Both happen in the open: no tunnel cell under the crawling footprint, so the head is down
-  // before it comes under a ceiling and up only once clear of it.
+  // Both happen in the open: no tunnel cell under the crawling footprint up to
+  // kneel_clear_reach ahead of the standing origin, so the head is down before it comes under a
+  // ceiling and up only once clear of it.
   double kneel_offset = 0.178;
+  // While it gets down or up, the body stays below h_tunnel more than this far ahead of the
+  // standing origin (the shipped controller reaches 0.46 m high up to 0.32 m ahead and falls
+  // below 0.30 m by 0.46 m): tunnel cells under the crawling footprint beyond it do not count
+  // against getting down or up "in the open", metres along the heading.
+  double kneel_clear_reach = 0.46;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible
@@ -188,6 +195,14 @@ struct PlanResult {
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p,
                 Posture start_posture = Posture::kUpright);
+
+// Plans as Plan does, but to the reachable state that minimises path cost + p.exit_factor times
+// its straight-line distance to the goal, whether or not the goal itself can be reached (the
+// plan Plan makes for a goal outside the window); reaches_goal is false. A robot that finds no
+// path uses it to get nearer and look again. kNoPath only with kStartBlocked.
+PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
+                      const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                      Posture start_posture = Posture::kUpright);
 
 // A run of one kind of move along a path, from path[first] to path[last] (first < last): the
 // robot frame at path[first] holds the run's displacement as one motion command. Walks and

@@ -130,7 +130,7 @@ void SearchMemory::Begin(int num_states) {
 }
 
 Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
-                 const PlannerParams& p, SearchMemory* memory)
+                 const PlannerParams& p, SearchMemory* memory, bool toward)
     : fog_(fog), p_(p), goal_G_(goal_G), memory_(memory ? memory : &own_memory_) {
   const perception::GridWindow& w = fog.window;
   if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
@@ -150,9 +150,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
+  if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  goal_in_window_ = w.Contains(gx, gy);
+  goal_in_window_ = !toward && w.Contains(gx, gy);
 
   cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
   // lattice geometry
@@ -247,15 +248,14 @@ void Lattice::ComputePermissions() {
                 ((t == CellType::kFloor || t == CellType::kUnknown) &&
                  tunnel_d2[i] <= zone_cells * zone_cells + kEps);
   }
-  // border cells may lie under a standing robot on their own level (see FootprintFits), so they
-  // count as blocked for the "certainly fits" test but not for the "certainly blocked" one
+  // border cells may lie under a standing robot, and in the crawl zone under a crawling one, on
+  // their own level (see FootprintFits), so they count as blocked for the "certainly fits" test
+  // but not for the "certainly blocked" one
   for (int q = 0; q < 2; ++q) {
     std::vector<uint8_t> blocked(n);
     for (size_t i = 0; i < n; ++i) blocked[i] = !ok_[q][i];
     SquaredDistanceTransform(blocked, w.size_x, w.size_y, &maybe_blocked_d2_[q]);
-    if (q == 0) {
-      for (size_t i = 0; i < n; ++i) blocked[i] = blocked[i] && fog_.type[i] != CellType::kBorder;
-    }
+    for (size_t i = 0; i < n; ++i) blocked[i] = blocked[i] && !MayBeLevelBorder(i, q);
     SquaredDistanceTransform(blocked, w.size_x, w.size_y, &blocked_d2_[q]);
   }
 }
@@ -466,7 +466,7 @@ void Lattice::ComputeHeuristic() {
   for (size_t i = 0; i < n; ++i) {
     for (int q = 0; q < 2; ++q) {
       const double in = inner_radius_cells_[q] - kEps;
-      const bool centre_ok = ok_[q][i] || (q == 0 && fog_.type[i] == CellType::kBorder);
+      const bool centre_ok = ok_[q][i] || MayBeLevelBorder(i, q);
       open[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
     }
   }
@@ -540,12 +540,25 @@ perception::Pose2 Lattice::PoseOf(int s) const {
   return {c.x(), c.y(), HeadingYaw(HeadingOfState(s))};
 }
 
+bool Lattice::MayBeLevelBorder(size_t cell, int q) const {
+  if (fog_.type[cell] != CellType::kBorder) return false;
+  if (q == 0) return true;
+  const double zone_cells = p_.crawl_zone_radius / fog_.window.resolution;
+  return tunnel_d2_[cell] <= zone_cells * zone_cells + kEps;
+}
+
 bool Lattice::CrawlFootprintInOpen(int cell, int heading) const {
   const perception::GridWindow& w = fog_.window;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
+  // along the heading, from the standing origin (kneel_steps_ behind the crawling one); beyond
+  // kneel_clear_reach the body stays below any tunnel's ceiling while it gets down or up
+  const double c = std::cos(HeadingYaw(heading)), s = std::sin(HeadingYaw(heading));
+  const double kneel = kneel_steps_[heading] * step_length_[heading];
   for (const CellStep& o : footprint_[1][heading]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
-    if (w.Contains(nx, ny) && fog_.type[size_t(w.Index(nx, ny))] == CellType::kTunnel) return false;
+    if (!w.Contains(nx, ny) || fog_.type[size_t(w.Index(nx, ny))] != CellType::kTunnel) continue;
+    const double ahead = kneel + (o.dx * c + o.dy * s) * w.resolution;
+    if (ahead <= p_.kneel_clear_reach + kEps) return false;
   }
   return true;
 }
@@ -583,11 +596,10 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
       continue;
     }
     const size_t i = size_t(w.Index(nx, ny));
-    if (q == 1) {
-      if (!ok_[1][i]) return false;
-      continue;
-    }
-    // standing: never on an obstacle or under a table; anywhere on unknown cells
+    if (q == 1 && ok_[1][i]) continue;
+    if (q == 1 && !MayBeLevelBorder(i, 1)) return false;
+    // standing: never on an obstacle or under a table; anywhere on unknown cells (crawling:
+    // only border cells of the crawl zone get here)
     const CellType t = fog_.type[i];
     if (t == CellType::kUnknown) continue;
     if (t == CellType::kObstacle || t == CellType::kTunnel) return false;

@@ -68,10 +68,12 @@ struct SearchMemory {
 class Lattice {
  public:
   // Prepares per-cell permissions, costs, footprints and the heuristic for one query, using
-  // `memory` (or memory of its own when null) for the per-state arrays. Aborts if the FOG's
-  // arrays do not match its window.
+  // `memory` (or memory of its own when null) for the per-state arrays. With `toward`, every
+  // cell ends the search at exit_factor times its distance to the goal, as when the goal lies
+  // outside the window (GoalInWindow() is then false). Aborts if the FOG's arrays do not match
+  // its window.
   Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
-          SearchMemory* memory = nullptr);
+          SearchMemory* memory = nullptr, bool toward = false);
   SearchMemory& memory() { return *memory_; }
   uint32_t generation() const { return memory_->generation; }
 
@@ -116,6 +118,9 @@ class Lattice {
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
   // True if no tunnel cell lies under the crawling footprint at `cell`, `heading`.
+  // Whether cell may lie under a footprint of posture q if level with its origin: a border
+  // cell, for crawling only in the crawl zone.
+  bool MayBeLevelBorder(size_t cell, int q) const;
   bool CrawlFootprintInOpen(int cell, int heading) const;
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // fewest lattice steps along its heading that end in a valid standing state on a floor more

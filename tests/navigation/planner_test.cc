@@ -83,7 +83,7 @@ void ExpectLevel(const Fog& fog, const PathPose& q, const PlannerParams& p,
 
 // Checks every pose after the start: no obstacle cell under any footprint, a standing one level
 // (so no border cell off the robot's own level) and on no tunnel cell, a crawling footprint only
-// on tunnel, floor and unknown cells.
+// on tunnel, floor and unknown cells and border cells on its level.
 void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerParams& p) {
   for (size_t i = 1; i < r.path.size(); ++i) {
     if (r.path[i].posture == Posture::kUpright) {
@@ -96,7 +96,12 @@ void ExpectFootprintsClear(const Fog& fog, const PlanResult& r, const PlannerPar
       if (r.path[i].posture == Posture::kUpright) {
         ASSERT_NE(t, CellType::kTunnel) << "pose " << i << " cell " << ix << "," << iy;
       } else {
-        ASSERT_TRUE(t == CellType::kTunnel || t == CellType::kFloor || t == CellType::kUnknown)
+        // border only on the origin's level (the foot of a wall beside a table)
+        const bool level_border = t == CellType::kBorder && KnownHeight(fog, ix, iy) &&
+                                  std::abs(fog.HeightAt(ix, iy) - r.path[i].floor_z) <=
+                                      p.h_floor + 1e-7;
+        ASSERT_TRUE(t == CellType::kTunnel || t == CellType::kFloor || t == CellType::kUnknown ||
+                    level_border)
             << "pose " << i << " cell " << ix << "," << iy;
       }
     }
@@ -616,6 +621,32 @@ TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
   const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, PlannerParams());
   EXPECT_EQ(r.status, PlanStatus::kNoPath);
   EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+}
+
+// Without a way in, PlanToward still leads as near the goal as the map allows: to the room's
+// west wall, where the goal is 0.42 m beyond the wall's inner face
+TEST(Planner, PlanTowardAnEnclosedGoalEndsAtTheNearestReachablePlace) {
+  Fog fog = FlatFog(75, 75, 0.04);
+  FillBox(&fog, 1.6, 1.0, 2.6, 1.08, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.6, 1.92, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.6, 1.0, 1.68, 2.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 2.52, 1.0, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  const PlannerParams p;
+  const PlanResult r = PlanToward(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_FALSE(r.reaches_goal);
+  const perception::Pose2& end = r.path.back().pose_G;
+  // facing the wall, the footprint's front edge (depth / 2 + margin) just short of x = 1.6
+  EXPECT_GT(end.x, 1.6 - p.depth / 2 - p.margin - 0.09);
+  EXPECT_LT(end.x, 1.6);
+  EXPECT_NEAR(end.y, 1.50, 0.05);
+  ExpectFootprintsClear(fog, r, p);
+  // with a way in it goes to the goal, as Plan does
+  FillBox(&fog, 1.6, 1.3, 1.68, 1.7, CellType::kFloor, 0.0f);
+  const PlanResult open = PlanToward(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, p);
+  ASSERT_EQ(open.status, PlanStatus::kOk);
+  EXPECT_LT((Eigen::Vector2d(open.path.back().pose_G.x, open.path.back().pose_G.y) -
+             Eigen::Vector2d(2.10, 1.50)).norm(), p.goal_tolerance + 1e-9);
 }
 
 // A wall with an L-shaped slot 0.16 m wide: open to a robot without orientation, but too narrow
