@@ -278,6 +278,34 @@ TEST_F(ControllerTest, CrawlsUnderATableWithItsUndersideAt35Centimetres) {
   RecordProperty("crawl_height_m", std::to_string(top));
 }
 
+// The planner (navigation::PlannerParams::kneel_clear_reach) lets tunnel cells lie under the
+// crawling footprint more than 0.46 m ahead of the standing origin when the robot gets down: the
+// body must stay below the lowest tunnel ceiling (0.30 m) there throughout.
+TEST_F(ControllerTest, GettingDownKeepsTheBodyLowBeyondTheKneelClearReach) {
+  Load("");
+  double highest_beyond = 0, highest = 0;
+  auto envelope = [&](int) {
+    const Eigen::Isometry3d X_WR0 = Eigen::Isometry3d::Identity();  // the start: world = robot
+    const Eigen::Isometry3d X_WR = RobotFrameInWorld(c_->humanoid(), d_.get());
+    for (const RobotBox& box : RobotBodyBoxes(c_->humanoid(), m_.get(), d_.get())) {
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector3d corner((k & 1 ? 1 : -1) * box.half_size.x(),
+                                     (k & 2 ? 1 : -1) * box.half_size.y(),
+                                     (k & 4 ? 1 : -1) * box.half_size.z());
+        const Eigen::Vector3d p = X_WR0.inverse() * X_WR * (box.X_RB * corner);
+        highest = std::max(highest, p.z());
+        if (p.x() > 0.46) highest_beyond = std::max(highest_beyond, p.z());
+      }
+    }
+  };
+  c_->GetDown();
+  c_->RunUntilIdle(m_.get(), d_.get(), envelope);
+  c_->GetUp();
+  c_->RunUntilIdle(m_.get(), d_.get(), envelope);
+  EXPECT_GT(highest, 0.55);  // it does stand up and get down
+  EXPECT_LT(highest_beyond, 0.30);
+}
+
 TEST_F(ControllerTest, CrawlTurnsAndKeepsItsBelief) {
   Load("");
   c_->GetDown();
