@@ -48,6 +48,8 @@ struct ExecutionLimits {
   double walk = 0.16;
   double sidestep = 0.10;
   double crawl = 0.12;
+  // without a path to the goal, the robot approaches it if that gains at least this much
+  double min_approach = 0.1;
 };
 
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
@@ -214,17 +216,28 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     timing["planning"].push_back(Ms(start));
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
-      if (just_looked) {
+      if (!just_looked) {
+        look_around();
+        looked_at = believed;
+        just_looked = true;
+        continue;
+      }
+      // no way even after looking around: get as near the goal as the map allows and look
+      // again from there (what was seen from afar may be wrong), unless that gains nothing
+      const double to_goal = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
+      nav::PlanResult toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
+      const bool nearer =
+          toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
+          (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
+           scenario.goal).norm() < to_goal - limits.min_approach;
+      if (!nearer) {
         failure = "no_path";
         // a plan that ends where it starts: the best reachable state toward the goal is here
         failure_detail =
             plan.status == nav::PlanStatus::kOk ? "no_progress" : nav::NoPathReasonName(plan.reason);
         break;
       }
-      look_around();
-      looked_at = believed;
-      just_looked = true;
-      continue;
+      plan = std::move(toward);
     }
 
     // the first run of moves, cut to about two strides
