@@ -63,6 +63,11 @@ struct Fog {
   GridWindow window;
   std::vector<CellType> type;  // window.NumCells() entries, indexed by window.Index(ix, iy)
   std::vector<float> height;   // same indexing
+  // Extension: per cell, 1 if the 3D grid has observed every layer between h_tunnel and
+  // h_robot above the cell's floor (so a standing robot's head would be where the robot has
+  // looked) and none of them is occupied; 0 if not or without a floor. Empty when not known
+  // (GroundTruthFog: the geometry is exact); same indexing.
+  std::vector<uint8_t> headroom_seen;
 
   Fog() = default;
   explicit Fog(const GridWindow& w)
@@ -137,6 +142,10 @@ struct OccupancyParams {
   // points in one cell cross nearly the same cells, and near the camera dozens of points share a
   // cell. Every point still marks its end cell occupied.
   bool one_ray_per_end_cell = true;
+  // Extension: a cell counts as hit in a frame only if at least this many points end in it
+  // (else as crossed, if a ray crossed it), so that a stray stereo point does not make an
+  // obstacle; 1 = the paper.
+  int min_hits_per_frame = 1;
   // P_occ of eq. (19, 22, 23): a cell is occupied if its probability exceeds this.
   double p_occ = 0.6;
 };

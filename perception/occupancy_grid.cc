@@ -14,6 +14,7 @@ namespace {
 constexpr uint8_t kMarkFree = 1;
 constexpr uint8_t kMarkHit = 2;
 constexpr uint8_t kMarkTraced = 4;  // a ray to this end cell was traced this frame
+constexpr uint8_t kHitCountStep = 8;  // bits 3-7 count the points ending in the cell (up to 31)
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Clips the segment a + t (b - a), t in [0, 1], to the box [0, n) per axis; false if it misses.
@@ -37,14 +38,16 @@ bool ClipToBox(const Eigen::Vector3f& a, const Eigen::Vector3f& d, const Eigen::
   return true;
 }
 
-// eq. (18) in log-odds for one cell, then clears its mark.
-inline void ApplyMark(float l_hit, float l_miss, float l_min, float l_max, uint8_t* mark,
-                      float* l) {
+// eq. (18) in log-odds for one cell, then clears its mark: a hit if at least min_hits points
+// ended in it, else a miss if a ray crossed it
+inline void ApplyMark(float l_hit, float l_miss, float l_min, float l_max, int min_hits,
+                      uint8_t* mark, float* l) {
   const uint8_t m = *mark;
   if (m == 0) return;
   *mark = 0;
-  if (!(m & (kMarkHit | kMarkFree))) return;
-  *l = std::clamp(*l + ((m & kMarkHit) ? l_hit : l_miss), l_min, l_max);
+  const bool hit = (m & kMarkHit) && (m / kHitCountStep) >= min_hits;
+  if (!hit && !(m & kMarkFree)) return;
+  *l = std::clamp(*l + (hit ? l_hit : l_miss), l_min, l_max);
 }
 
 }  // namespace
@@ -78,6 +81,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
       uint8_t& end_mark =
           marks[size_t(FastFloor(b.y()) * nx + FastFloor(b.x())) * nz + FastFloor(b.z())];
       end_mark |= kMarkHit;
+      if (end_mark / kHitCountStep < 31) end_mark += kHitCountStep;
       if (params.one_ray_per_end_cell) {
         if (end_mark & kMarkTraced) continue;
         end_mark |= kMarkTraced;
@@ -159,6 +163,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   // eq. (18) in log-odds: l += log(P(p|c) / P(p|!c)), once per cell and frame
   const float l_hit = LogOdds(params.p_hit), l_miss = LogOdds(params.p_miss);
   const float l_min = LogOdds(params.p_min), l_max = LogOdds(params.p_max);
+  const int min_hits = std::max(1, params.min_hits_per_frame);
   float* l = s.log_odds.data();
   const size_t cells = s.log_odds.size();
   size_t i = 0;
@@ -166,9 +171,11 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     uint64_t block;  // skip eight untouched cells at once
     std::memcpy(&block, marks + i, 8);
     if (block == 0) continue;
-    for (size_t j = i; j < i + 8; ++j) ApplyMark(l_hit, l_miss, l_min, l_max, &marks[j], &l[j]);
+    for (size_t j = i; j < i + 8; ++j) {
+      ApplyMark(l_hit, l_miss, l_min, l_max, min_hits, &marks[j], &l[j]);
+    }
   }
-  for (; i < cells; ++i) ApplyMark(l_hit, l_miss, l_min, l_max, &marks[i], &l[i]);
+  for (; i < cells; ++i) ApplyMark(l_hit, l_miss, l_min, l_max, min_hits, &marks[i], &l[i]);
 }
 
 }  // namespace fognav::perception::internal

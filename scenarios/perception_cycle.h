@@ -16,6 +16,14 @@
 
 namespace fognav::scenarios {
 
+// The maps of the loop: the paper's, but a cell counts as hit in a frame only if two points end
+// in it (OccupancyParams::min_hits_per_frame), so stray stereo matches make no obstacles.
+inline perception::MapParams MapDefaults() {
+  perception::MapParams p;
+  p.grid.min_hits_per_frame = 2;
+  return p;
+}
+
 struct PerceptionParams {
   perception::StereoParams stereo;
   // for stereo depth (Table 1: C_max 15). perception::RayNoiseParams() segments the rendered
@@ -26,7 +34,7 @@ struct PerceptionParams {
   perception::SegmentParams segment_ideal = perception::PreciseRangeParams();  // C_max 10
   bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
   perception::LabelParams label;
-  perception::MapParams map;
+  perception::MapParams map = MapDefaults();
 };
 
 // What one view gave, for frames and reports.

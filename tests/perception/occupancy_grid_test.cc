@@ -198,6 +198,31 @@ TEST(OccupancyGrid, OutliersAreFilteredByLaterRays) {
   EXPECT_NE(fog.TypeAt(ix, iy), CellType::kObstacle);
 }
 
+// With min_hits_per_frame 2 a lone stray point in a frame is no hit (its cell stays unknown),
+// while two points ending in one cell, and the wall's cells with dozens each, are.
+TEST(OccupancyGrid, AStrayPointIsNoHitWithTwoHitsPerFrame) {
+  MapParams params;
+  params.grid.min_hits_per_frame = 2;
+  MapState state;
+  std::vector<Eigen::Vector3f> points;
+  for (double y = -0.3; y <= 0.3; y += 0.01) {
+    for (double z = 0.0; z <= 0.5; z += 0.01) points.push_back({1.01f, float(y), float(z)});
+  }
+  const Eigen::Vector3f stray(0.61f, 0.21f, 0.25f), pair(0.61f, -0.21f, 0.25f);
+  points.push_back(stray);
+  points.push_back(pair);
+  points.push_back(pair + Eigen::Vector3f(0.01f, 0.005f, 0.0f));  // the same cell
+  UpdateMaps(params, Frame({}, {0.0, 0.0, 0.3}, points), &state);
+  EXPECT_EQ(state.ProbabilityAt(stray.cast<double>()), 0.5);
+  EXPECT_GT(state.ProbabilityAt(pair.cast<double>()), params.grid.p_occ);
+  EXPECT_GT(state.ProbabilityAt(Eigen::Vector3d(1.01, 0.0, 0.25)), params.grid.p_occ);
+  // the paper's update: the stray point's cell is occupied
+  MapParams paper;
+  MapState paper_state;
+  UpdateMaps(paper, Frame({}, {0.0, 0.0, 0.3}, points), &paper_state);
+  EXPECT_GT(paper_state.ProbabilityAt(stray.cast<double>()), paper.grid.p_occ);
+}
+
 TEST(OccupancyGrid, MapsFitInFourMegabytes) {
   MapParams params;
   MapState state;
