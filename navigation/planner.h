@@ -109,6 +109,10 @@ struct PlannerParams {
   // below 0.30 m by 0.46 m): tunnel cells under the crawling footprint beyond it do not count
   // against getting down or up "in the open", metres along the heading.
   double kneel_clear_reach = 0.46;
+  // Getting up only where the FOG has seen the headroom (perception::Fog::headroom_seen) of the
+  // standing footprint and of the cells the head reaches: a ceiling seen only at its edge (a
+  // table top just above the eyes) may go on over floor cells the map holds as open.
+  bool get_up_under_seen_headroom = true;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible

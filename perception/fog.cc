@@ -41,6 +41,8 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   }
   std::vector<float> dh, highest;
   internal::FloorChange(w, *floor, params.fog.neighbourhood_radius, &dh, &highest);
+  fog.headroom_seen.assign(fog.type.size(), 0);
+  const float h_tunnel = float(params.fog.h_tunnel), h_robot = float(params.fog.h_robot);
 
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -78,6 +80,14 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       }
       fog.type[i] = t;
       fog.height[i] = internal::FogHeight(t, q);
+      // headroom: every layer overlapping [f + h_tunnel, f + h_robot) observed and free
+      if (std::isfinite(q.f) && t != CellType::kObstacle && t != CellType::kTunnel) {
+        const int lo = std::max(0, internal::FastFloor((q.f + h_tunnel - z_min) * inv_res));
+        const int hi = std::min(nz, -internal::FastFloor(-(q.f + h_robot - z_min) * inv_res));
+        bool seen = lo < hi;
+        for (int iz = lo; iz < hi && seen; ++iz) seen = column[iz] < 0.0f;
+        fog.headroom_seen[i] = seen;
+      }
     }
   }
   return fog;

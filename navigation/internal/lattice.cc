@@ -233,11 +233,17 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
 void Lattice::ComputePermissions() {
   const perception::GridWindow& w = fog_.window;
   const size_t n = size_t(num_cells_);
-  // crawl zone: tunnel cells and floor cells near them
-  std::vector<uint8_t> tunnel(n);
-  for (size_t i = 0; i < n; ++i) tunnel[i] = fog_.type[i] == CellType::kTunnel;
+  // crawl zone: tunnel cells, floor cells whose headroom the map has not seen (a ceiling seen
+  // only in part may go on there) and floor cells near either
+  std::vector<uint8_t> tunnel(n), ceiling(n);
+  const bool use_headroom = p_.get_up_under_seen_headroom && !fog_.headroom_seen.empty();
+  for (size_t i = 0; i < n; ++i) {
+    tunnel[i] = fog_.type[i] == CellType::kTunnel;
+    ceiling[i] = tunnel[i] || (use_headroom && fog_.type[i] == CellType::kFloor &&
+                               !fog_.headroom_seen[i]);
+  }
   SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2_);
-  const std::vector<double>& tunnel_d2 = tunnel_d2_;
+  SquaredDistanceTransform(ceiling, w.size_x, w.size_y, &zone_d2_);
   const double zone_cells = p_.crawl_zone_radius / w.resolution;
   ok_[0].assign(n, 0);
   ok_[1].assign(n, 0);
@@ -246,7 +252,7 @@ void Lattice::ComputePermissions() {
     ok_[0][i] = t == CellType::kFloor || t == CellType::kStairs || t == CellType::kUnknown;
     ok_[1][i] = t == CellType::kTunnel ||
                 ((t == CellType::kFloor || t == CellType::kUnknown) &&
-                 tunnel_d2[i] <= zone_cells * zone_cells + kEps);
+                 zone_d2_[i] <= zone_cells * zone_cells + kEps);
   }
   // border cells may lie under a standing robot, and in the crawl zone under a crawling one, on
   // their own level (see FootprintFits), so they count as blocked for the "certainly fits" test
@@ -540,11 +546,32 @@ perception::Pose2 Lattice::PoseOf(int s) const {
   return {c.x(), c.y(), HeadingYaw(HeadingOfState(s))};
 }
 
+bool Lattice::HeadroomSeen(int cell, int heading) const {
+  if (fog_.headroom_seen.empty() || !p_.get_up_under_seen_headroom) return true;
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  auto seen = [&](int nx, int ny) {
+    return w.Contains(nx, ny) && fog_.headroom_seen[size_t(w.Index(nx, ny))] != 0;
+  };
+  for (const CellStep& o : footprint_[0][heading]) {
+    if (!seen(ix + o.dx, iy + o.dy)) return false;
+  }
+  // where the head reaches, looking down
+  const double r = (p_.head_reach + p_.margin) / w.resolution + kEps;
+  const int reach = int(r);
+  for (int dy = -reach; dy <= reach; ++dy) {
+    for (int dx = -reach; dx <= reach; ++dx) {
+      if (dx * dx + dy * dy <= r * r && !seen(ix + dx, iy + dy)) return false;
+    }
+  }
+  return true;
+}
+
 bool Lattice::MayBeLevelBorder(size_t cell, int q) const {
   if (fog_.type[cell] != CellType::kBorder) return false;
   if (q == 0) return true;
   const double zone_cells = p_.crawl_zone_radius / fog_.window.resolution;
-  return tunnel_d2_[cell] <= zone_cells * zone_cells + kEps;
+  return zone_d2_[cell] <= zone_cells * zone_cells + kEps;
 }
 
 bool Lattice::CrawlFootprintInOpen(int cell, int heading) const {
@@ -753,7 +780,7 @@ int Lattice::Successors(int s, Successor* out) {
     const int m = kneel_steps_[k];
     const int ux = ix - m * kSteps[k].dx, uy = iy - m * kSteps[k].dy;
     if (w.Contains(ux, uy) && std::abs(HeightStep(cell, w.Index(ux, uy))) <= p_.h_floor &&
-        CrawlFootprintInOpen(cell, k)) {
+        CrawlFootprintInOpen(cell, k) && HeadroomSeen(w.Index(ux, uy), k)) {
       const int up = StateIndex(ux, uy, k, Posture::kUpright);
       if (Valid(up)) out[n++] = {up, p_.posture_change_cost, m * step_length_[k], Move::kCrawl};
     }
@@ -815,7 +842,10 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
                               angle * p_.turn_cost_per_rad *
                                   (Posture(q) == Posture::kCrawling ? p_.crawl_factor : 1.0) +
                               (changes ? p_.posture_change_cost : 0.0);
-          const Move move = changes ? Move::kCrawl : d > kEps ? Move::kSidestep : Move::kTurn;
+          // a crawling robot shuffles by crawling, a standing one by side-stepping
+          const Move move = changes || (d > kEps && Posture(q) == Posture::kCrawling)
+                                ? Move::kCrawl
+                                : d > kEps ? Move::kSidestep : Move::kTurn;
           seeds.push_back({s, cost, d, move});
         }
       }

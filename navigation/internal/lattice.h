@@ -121,6 +121,10 @@ class Lattice {
   // Whether cell may lie under a footprint of posture q if level with its origin: a border
   // cell, for crawling only in the crawl zone.
   bool MayBeLevelBorder(size_t cell, int q) const;
+  // Whether the FOG has seen the headroom (Fog::headroom_seen) of every cell under the
+  // standing footprint at (cell, heading) and within head_reach + margin of it; true if the FOG
+  // does not say or get_up_under_seen_headroom is off.
+  bool HeadroomSeen(int cell, int heading) const;
   bool CrawlFootprintInOpen(int cell, int heading) const;
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // fewest lattice steps along its heading that end in a valid standing state on a floor more
@@ -163,6 +167,8 @@ class Lattice {
   std::vector<double> maybe_blocked_d2_[2];
   int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
   std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
+  // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
+  std::vector<double> zone_d2_;
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells

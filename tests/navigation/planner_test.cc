@@ -395,6 +395,46 @@ TEST(Planner, CrawlsUnderATableAcrossACorridor) {
   ExpectMovesConsistent(r);
 }
 
+// A table seen only at its front edge: a tunnel band 0.16 m deep, then floor whose headroom the
+// map has not seen up to x = 2.0. Getting up needs seen headroom under the standing footprint and
+// the head, so the robot crawls on over the unseen floor (allowed for crawling) and stands up
+// only beyond x = 2.0; without headroom information it stands up right after the band.
+TEST(Planner, GetsUpOnlyWhereTheHeadroomIsSeen) {
+  Fog fog = FlatFog(80, 60, 0.04);
+  FillBox(&fog, 0.0, 0.0, 3.2, 0.6, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 1.4, 0.6, 1.56, 1.8, CellType::kTunnel, 0.0f);
+  fog.headroom_seen.assign(fog.type.size(), 1);
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      const double x = fog.window.CellCenter(ix, iy).x();
+      if (x > 1.4 && x < 2.0) fog.headroom_seen[size_t(fog.window.Index(ix, iy))] = 0;
+    }
+  }
+  const PlannerParams p;
+  auto get_up_x = [](const PlanResult& r) {
+    for (size_t i = 1; i < r.path.size(); ++i) {
+      if (r.path[i - 1].posture == Posture::kCrawling && r.path[i].posture == Posture::kUpright) {
+        return r.path[i].pose_G.x;
+      }
+    }
+    return -1.0;
+  };
+  const PlanResult r = Plan(fog, {0.50, 1.22, 0.0}, {3.10, 1.22}, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_TRUE(r.reaches_goal);
+  // the head's reach clear of the unseen cells
+  EXPECT_GE(get_up_x(r), 2.0 + p.head_reach) << Moves(r);
+  ExpectFootprintsClear(fog, r, p);
+  ExpectMovesConsistent(r);
+
+  fog.headroom_seen.clear();
+  const PlanResult without = Plan(fog, {0.50, 1.22, 0.0}, {3.10, 1.22}, p);
+  ASSERT_EQ(without.status, PlanStatus::kOk);
+  EXPECT_GT(get_up_x(without), 1.56);
+  EXPECT_LT(get_up_x(without), 2.0) << Moves(without);
+}
+
 TEST(Planner, NeverCrawlsWithoutATunnel) {
   const Fog fog = FlatFog(75, 50, 0.04);
   PlannerParams p;

@@ -351,5 +351,47 @@ TEST(FogFig9, PerfectSensorMatchesGroundTruth) {
   EXPECT_LE(s.height_error_max, 0.005);
 }
 
+// Fog::headroom_seen: a floor cell whose layers from h_tunnel to h_robot rays have crossed is
+// seen; one without rays above its floor is not, nor is one whose column holds a ceiling.
+TEST(Fog, HeadroomIsSeenWhereRaysCrossedEveryLayerAboveTheFloor) {
+  MapParams params;
+  MapState state;
+  MapInput in;
+  in.p_GC = Eigen::Vector3d(0.0, 0.0, 0.56);
+  // a wall at x = 2 from the floor to 0.6 m across y in [-0.2, 0.2]: at x = 1 the rays to it
+  // span z from 0.28 to 0.58
+  for (double y = -0.2; y <= 0.2; y += 0.01) {
+    for (double z = 0.0; z <= 0.6; z += 0.01) in.points.push_back({Eigen::Vector3f(2.0f, float(y), float(z))});
+  }
+  // floor patches at x = 1 (under those rays) and at y = 1 (no ray above them but their own)
+  for (double x = 0.9; x <= 1.1; x += 0.01) {
+    for (double y : {-0.05, -0.03, -0.01, 0.01, 0.03, 0.05, 0.95, 0.97, 0.99, 1.01, 1.03, 1.05}) {
+      in.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
+    }
+  }
+  // a ceiling at 0.45 m over a floor patch at x = 1.5
+  for (double x = 1.45; x <= 1.55; x += 0.01) {
+    for (double y = -0.05; y <= 0.05; y += 0.01) {
+      in.points.push_back({Eigen::Vector3f(float(x), float(y), 0.45f)});
+      in.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
+    }
+  }
+  for (int k = 0; k < 2; ++k) UpdateMaps(params, in, &state);
+  const Fog fog = ComputeFog(params, state);
+  ASSERT_EQ(fog.headroom_seen.size(), fog.type.size());
+  auto seen = [&](double x, double y) {
+    int ix, iy;
+    fog.window.CellOf(x, y, &ix, &iy);
+    return fog.headroom_seen[size_t(fog.window.Index(ix, iy))];
+  };
+  EXPECT_EQ(TypeAt(fog, 1.0, 0.0), CellType::kFloor);
+  EXPECT_EQ(seen(1.0, 0.0), 1);
+  EXPECT_EQ(TypeAt(fog, 1.0, 1.0), CellType::kFloor);
+  EXPECT_EQ(seen(1.0, 1.0), 0);
+  EXPECT_EQ(TypeAt(fog, 1.5, 0.0), CellType::kTunnel);
+  EXPECT_EQ(seen(1.5, 0.0), 0);
+  EXPECT_EQ(seen(-1.0, -1.0), 0);  // never observed
+}
+
 }  // namespace
 }  // namespace fognav::perception
