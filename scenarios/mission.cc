@@ -293,7 +293,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         }
         break;
       default:
-        controller.Walk(delta.x(), delta.y(), delta.z());
+        if (controller.mode() == sim::Mode::kCrawling) {
+          controller.Crawl(delta.x(), delta.z());  // a shuffle while crawling: along the heading
+        } else {
+          controller.Walk(delta.x(), delta.y(), delta.z());
+        }
         break;
     }
     ++actions[current_move];
