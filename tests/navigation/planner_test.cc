@@ -652,12 +652,18 @@ TEST(Planner, GoalInsideABorderRingIsEnclosed) {
   EXPECT_STREQ(NoPathReasonName(r.reason), "goal_enclosed");
 }
 
-TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
+// A room of 0.3 m walls, x from 1.6 to 2.6 and y from 1.0 to 2.0, on 3 m x 3 m of floor.
+Fog WalledRoom() {
   Fog fog = FlatFog(75, 75, 0.04);
   FillBox(&fog, 1.6, 1.0, 2.6, 1.08, CellType::kObstacle, 0.3f);
   FillBox(&fog, 1.6, 1.92, 2.6, 2.0, CellType::kObstacle, 0.3f);
   FillBox(&fog, 1.6, 1.0, 1.68, 2.0, CellType::kObstacle, 0.3f);
   FillBox(&fog, 2.52, 1.0, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  return fog;
+}
+
+TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
+  const Fog fog = WalledRoom();
   const PlanResult r = Plan(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, PlannerParams());
   EXPECT_EQ(r.status, PlanStatus::kNoPath);
   EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
@@ -666,11 +672,7 @@ TEST(Planner, GoalInsideAWalledRoomIsEnclosed) {
 // Without a way in, PlanToward still leads as near the goal as the map allows: to the room's
 // west wall, where the goal is 0.42 m beyond the wall's inner face
 TEST(Planner, PlanTowardAnEnclosedGoalEndsAtTheNearestReachablePlace) {
-  Fog fog = FlatFog(75, 75, 0.04);
-  FillBox(&fog, 1.6, 1.0, 2.6, 1.08, CellType::kObstacle, 0.3f);
-  FillBox(&fog, 1.6, 1.92, 2.6, 2.0, CellType::kObstacle, 0.3f);
-  FillBox(&fog, 1.6, 1.0, 1.68, 2.0, CellType::kObstacle, 0.3f);
-  FillBox(&fog, 2.52, 1.0, 2.6, 2.0, CellType::kObstacle, 0.3f);
+  Fog fog = WalledRoom();
   const PlannerParams p;
   const PlanResult r = PlanToward(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, p);
   ASSERT_EQ(r.status, PlanStatus::kOk);
