@@ -5,7 +5,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -37,7 +36,8 @@ const char* kGap =
 const std::vector<ClipSpec>& Specs() {
   static const std::vector<ClipSpec> specs = {
       {"walk", "[]", [](sim::Controller* c) { c->Walk(1.0, 0, 0); }, {0.5, -1.2, 0.6}},
-      {"sidestep", kGap,
+      {"sidestep",
+       kGap,
        [](sim::Controller* c) {
          c->Walk(0, 0, M_PI / 2);
          c->Walk(0, -1.2, 0);  // facing +y, the robot's right is +x
@@ -46,7 +46,8 @@ const std::vector<ClipSpec>& Specs() {
        {0.6, -1.0, 1.0}},
       {"turn", "[]", [](sim::Controller* c) { c->Walk(0, 0, M_PI / 2); }, {0.9, -0.9, 0.7}},
       // toes 2 cm before each riser, then one stride onto the tread
-      {"stairs", kStairs,
+      {"stairs",
+       kStairs,
        [](sim::Controller* c) {
          c->Walk(0.225, 0, 0);
          c->StepOnto(0.155, 0.03);
@@ -58,7 +59,8 @@ const std::vector<ClipSpec>& Specs() {
          c->StepOnto(0.155, -0.03);
        },
        {0.6, -1.2, 0.5}},
-      {"crawl", kTable,
+      {"crawl",
+       kTable,
        [](sim::Controller* c) {
          c->GetDown();
          c->Crawl(1.26, 0);
@@ -79,7 +81,8 @@ void WriteStrip(const std::string& dir, int frames) {
     std::snprintf(name, sizeof(name), "/frame_%05d.png", frame);
     cv::Mat image = cv::imread(dir + name);
     if (image.empty()) throw InputError(dir + name + ": cannot read back the clip frame");
-    if (!row.empty()) row.push_back(cv::Mat(image.rows, 2, image.type(), cv::Scalar(255, 255, 255)));
+    if (!row.empty())
+      row.push_back(cv::Mat(image.rows, 2, image.type(), cv::Scalar(255, 255, 255)));
     row.push_back(image);
   }
   cv::Mat strip;

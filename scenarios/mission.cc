@@ -225,7 +225,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // no way even after looking around: get as near the goal as the map allows and look
       // again from there (what was seen from afar may be wrong), unless that gains nothing
       const double to_goal = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
-      nav::PlanResult toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
+      nav::PlanResult toward =
+          nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
       const bool nearer =
           toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
           (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
@@ -233,11 +234,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       if (!nearer) {
         failure = "no_path";
         // a plan that ends where it starts: the best reachable state toward the goal is here
-        failure_detail =
-            plan.status == nav::PlanStatus::kOk ? "no_progress" : nav::NoPathReasonName(plan.reason);
+        failure_detail = plan.status == nav::PlanStatus::kOk ? "no_progress"
+                                                             : nav::NoPathReasonName(plan.reason);
         break;
       }
       plan = std::move(toward);
+      if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     }
 
     // the first run of moves, cut to about two strides

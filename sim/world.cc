@@ -44,11 +44,13 @@ std::string WorldXml(const WorldSpec& spec) {
          "             markrgb=\"0.15 0.15 0.15\"/>\n"
          "    <texture name=\"fognav_object_tex\" type=\"2d\" builtin=\"flat\" width=\"512\" height=\"512\"\n"
          "             rgb1=\"1 1 1\" rgb2=\"1 1 1\" mark=\"random\" random=\"0.45\" markrgb=\"0.2 0.2 0.2\"/>\n"
-         "    <material name=\"fognav_floor_mat\" texture=\"fognav_floor_tex\" texrepeat=\"" << texrepeat_per_m << " " << texrepeat_per_m << "\"\n"
+         "    <material name=\"fognav_floor_mat\" texture=\"fognav_floor_tex\" texrepeat=\""
+      << texrepeat_per_m << " " << texrepeat_per_m << "\"\n"
          "              texuniform=\"true\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   for (size_t i = 0; i < std::size(kObjectColours); ++i) {
     xml << "    <material name=\"fognav_object_mat" << i
-        << "\" texture=\"fognav_object_tex\" texrepeat=\"" << texrepeat_per_m << " " << texrepeat_per_m << "\" texuniform=\"true\" rgba=\""
+        << "\" texture=\"fognav_object_tex\" texrepeat=\"" << texrepeat_per_m << " "
+        << texrepeat_per_m << "\" texuniform=\"true\" rgba=\""
         << kObjectColours[i] << " 1\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   }
   xml << "  </asset>\n";

@@ -361,7 +361,9 @@ TEST(Fog, HeadroomIsSeenWhereRaysCrossedEveryLayerAboveTheFloor) {
   // a wall at x = 2 from the floor to 0.6 m across y in [-0.2, 0.2]: at x = 1 the rays to it
   // span z from 0.28 to 0.58
   for (double y = -0.2; y <= 0.2; y += 0.01) {
-    for (double z = 0.0; z <= 0.6; z += 0.01) in.points.push_back({Eigen::Vector3f(2.0f, float(y), float(z))});
+    for (double z = 0.0; z <= 0.6; z += 0.01) {
+      in.points.push_back({Eigen::Vector3f(2.0f, float(y), float(z))});
+    }
   }
   // floor patches at x = 1 (under those rays) and at y = 1 (no ray above them but their own)
   for (double x = 0.9; x <= 1.1; x += 0.01) {

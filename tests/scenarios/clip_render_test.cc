@@ -1,11 +1,10 @@
 // Clips of the controller's motions: frames from the external camera and a strip, no collisions.
-#include "scenarios/clips.h"
+#include <gtest/gtest.h>
 
 #include <filesystem>
-
-#include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "scenarios/clips.h"
 #include "scenarios/scenario.h"
 
 namespace fognav::scenarios {
