@@ -1,6 +1,8 @@
 #include "sim/render.h"
 
 #include <cmath>
+#include <map>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -87,6 +89,49 @@ TEST(Render, SurfaceIdsNameTheFacesOfABox) {
   // far above the horizon there is nothing
   EXPECT_EQ(view.surface_id[0], -1);
   EXPECT_TRUE(std::isnan(view.depth[0]));
+}
+
+// Every surface carries texture for stereo to match, seen close (0.3 m, as a crawling robot's
+// eyes) and far (2.5 m): on each face of a box and on the floor the grey level varies between
+// horizontal neighbours (the matching direction), standard deviation of the difference at
+// least 4 grey levels (rendered: 11 to 27).
+TEST(Render, EverySurfaceIsTexturedNearAndFar) {
+  for (double distance : {0.3, 2.5}) {
+    WorldSpec spec;
+    spec.with_robot = false;
+    spec.floor_center = {2, 0};
+    // a box turned 30 degrees: two side faces and the top in view
+    const double half = distance < 1 ? 0.05 : 0.3;
+    spec.boxes.push_back(Box("cube", {distance + half * 1.5, 0, half}, {half, half, half},
+                             M_PI / 6));
+    World world(spec);
+    Renderer renderer(world.model());
+    Eigen::Isometry3d X_WC = LookAlongX(distance < 1 ? 0.2 : 0.9);
+    X_WC.linear() = X_WC.linear() * Eigen::AngleAxisd(-0.35, Eigen::Vector3d::UnitX()).matrix();
+    auto camera = PinholeCamera::FromFov(X_WC, 176, 144, M_PI / 4);
+    RenderedView view = renderer.Render(world.model(), world.data(), camera);
+    std::map<int, std::vector<double>> differences;  // per surface
+    for (int v = 0; v < view.height; ++v) {
+      for (int u = 0; u + 1 < view.width; ++u) {
+        const size_t i = size_t(v) * view.width + u;
+        if (view.surface_id[i] < 0 || view.surface_id[i] != view.surface_id[i + 1]) continue;
+        auto grey = [&](size_t k) {
+          return (view.rgb[3 * k] + view.rgb[3 * k + 1] + view.rgb[3 * k + 2]) / 3.0;
+        };
+        differences[view.surface_id[i]].push_back(grey(i + 1) - grey(i));
+      }
+    }
+    int surfaces = 0;
+    for (const auto& [id, d] : differences) {
+      // surfaces seen edge-on (the top at 2.5 m) blur into their mean: not enough to judge
+      if (d.size() < 500) continue;
+      double sum2 = 0;
+      for (double x : d) sum2 += x * x;
+      EXPECT_GT(std::sqrt(sum2 / double(d.size())), 4.0) << "surface " << id << " at " << distance;
+      ++surfaces;
+    }
+    EXPECT_GE(surfaces, 3) << distance;  // the floor and at least two faces
+  }
 }
 
 TEST(Render, IntrinsicsReprojectAKnownPointWithinHalfAPixel) {
