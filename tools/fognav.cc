@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember(fognav::scenarios::ClipMotions()));
   clip->add_option("--out", out_dir, "output directory")->required();
   clip->add_option("--every", every, "control ticks between frames (default 5)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1000000));
   clip->add_flag("--quiet", quiet, "print nothing but errors");
 
   try {

@@ -74,6 +74,8 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
   EXPECT_EQ(RunFognav("validate /nonexistent.yaml").exit_code, 2);
   EXPECT_EQ(RunFognav("render scenarios/stairs_and_table.yaml").exit_code, 2);  // no --out
   EXPECT_EQ(RunFognav("fly").exit_code, 2);
+  EXPECT_EQ(RunFognav("clip moonwalk --out /tmp/x").exit_code, 2);
+  EXPECT_EQ(RunFognav("clip walk --out /tmp/x --every 0").exit_code, 2);
   EXPECT_EQ(RunFognav("perceive scenarios/stairs_and_table.yaml --out /tmp/x --depth lidar").exit_code, 2);
   // a video format it cannot write is refused before the mission runs
   Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_video --video /tmp/v.gif");
