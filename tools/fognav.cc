@@ -70,11 +70,14 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
   options.quiet = quiet;
   auto outcome = fognav::scenarios::RunMission(scenario, options);
   if (!quiet) {
+    // "out/" and "out" name the same directory: print it without the trailing slash
+    std::string dir = out;
+    while (dir.size() > 1 && dir.back() == '/') dir.pop_back();
     std::cout << scenario.name << ": " << (outcome.success ? "success" : "FAILED")
               << (outcome.reached_goal ? ", goal reached" : ", goal not reached")
               << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
-              << "report: " << out << "/report.json, trajectory: " << out
-              << "/trajectory.csv, frames: " << out << "/frames/, maps: " << out << "/maps/\n";
+              << "report: " << dir << "/report.json, trajectory: " << dir
+              << "/trajectory.csv, frames: " << dir << "/frames/, maps: " << dir << "/maps/\n";
     if (!video.empty()) std::cout << "video: " << video << "\n";
   }
   return outcome.success ? kExitOk : kExitExpectationFailed;
