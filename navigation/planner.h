@@ -144,7 +144,8 @@ struct PlannerParams {
   // path cost + exit_factor * its straight-line distance to the goal
   double exit_factor = 8.0;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
-  // cell centre is this close to the start (the robot shuffles free); metres
+  // cell centre is this close to the start (the robot shuffles free: a side-step standing, a
+  // crawl crawling, a turn in place, a crawl move where the posture changes); metres
   double start_escape_radius = 0.08;
 };
 

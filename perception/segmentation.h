@@ -228,6 +228,10 @@ StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_
 // pixel sums.
 SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores);
 
+// Pools range scores of several views: pixels add, the shares are weighted by pixels, the
+// errors are the median of the views' medians (views without a valid point left out).
+StereoScore CombineStereoScores(const std::vector<StereoScore>& scores);
+
 }  // namespace fognav::perception
 
 #endif  // FOGNAV_PERCEPTION_SEGMENTATION_H_

@@ -27,6 +27,14 @@ class IdMap {
   std::vector<int32_t> ids_;
 };
 
+// The median of a non-empty list, the mean of the middle two for an even count (reorders it).
+double Median(std::vector<double>* v) {
+  auto mid = v->begin() + v->size() / 2;
+  std::nth_element(v->begin(), mid, v->end());
+  if (v->size() % 2) return *mid;
+  return 0.5 * (*mid + *std::max_element(v->begin(), mid));
+}
+
 void Ratios(SegmentationScore* s) {
   s->accuracy = s->segment_px > 0 ? double(s->overlap_px) / double(s->segment_px) : 0.0;
   s->coverage = s->surface_px > 0 ? double(s->overlap_px) / double(s->surface_px) : 0.0;
@@ -198,15 +206,32 @@ StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_
   if (!disparity_errors.empty()) {
     score.valid = double(disparity_errors.size()) / double(score.pixels);
     score.bad_1px = double(bad) / double(disparity_errors.size());
-    auto median = [](std::vector<double>* v) {
-      auto mid = v->begin() + v->size() / 2;
-      std::nth_element(v->begin(), mid, v->end());
-      return *mid;
-    };
-    score.median_error_px = median(&disparity_errors);
-    score.median_depth_error = median(&depth_errors);
+    score.median_error_px = Median(&disparity_errors);
+    score.median_depth_error = Median(&depth_errors);
   }
   return score;
+}
+
+StereoScore CombineStereoScores(const std::vector<StereoScore>& scores) {
+  StereoScore total;
+  std::vector<double> error_px, error_m;
+  double valid_px = 0, bad_px = 0;
+  for (const StereoScore& s : scores) {
+    total.pixels += s.pixels;
+    valid_px += s.valid * double(s.pixels);
+    bad_px += s.bad_1px * s.valid * double(s.pixels);
+    if (s.valid > 0) {
+      error_px.push_back(s.median_error_px);
+      error_m.push_back(s.median_depth_error);
+    }
+  }
+  total.valid = total.pixels > 0 ? valid_px / double(total.pixels) : 0;
+  total.bad_1px = valid_px > 0 ? bad_px / valid_px : 0;
+  if (!error_px.empty()) {
+    total.median_error_px = Median(&error_px);
+    total.median_depth_error = Median(&error_m);
+  }
+  return total;
 }
 
 }  // namespace fognav::perception

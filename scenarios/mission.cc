@@ -295,11 +295,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         }
         break;
       default:
-        if (controller.mode() == sim::Mode::kCrawling) {
-          controller.Crawl(delta.x(), delta.z());  // a shuffle while crawling: along the heading
-        } else {
-          controller.Walk(delta.x(), delta.y(), delta.z());
-        }
+        controller.Walk(delta.x(), delta.y(), delta.z());
         break;
     }
     ++actions[current_move];

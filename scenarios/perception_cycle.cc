@@ -216,23 +216,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   }
 
   perception::SegmentationScore overall = perception::CombineScores(scores);
-  // range data over all views: shares weighted by pixels, errors the median of the views'
-  perception::StereoScore range;
-  std::vector<double> error_px, error_m;
-  double valid_px = 0, bad_px = 0;
-  for (const perception::StereoScore& r : ranges) {
-    range.pixels += r.pixels;
-    valid_px += r.valid * double(r.pixels);
-    bad_px += r.bad_1px * r.valid * double(r.pixels);
-    if (r.valid > 0) {
-      error_px.push_back(r.median_error_px);
-      error_m.push_back(r.median_depth_error);
-    }
-  }
-  range.valid = range.pixels > 0 ? valid_px / double(range.pixels) : 0;
-  range.bad_1px = valid_px > 0 ? bad_px / valid_px : 0;
-  range.median_error_px = Median(error_px);
-  range.median_depth_error = Median(error_m);
+  const perception::StereoScore range = perception::CombineStereoScores(ranges);
   nlohmann::json confusion = nlohmann::json::object();
   for (int t = 0; t < perception::kNumCellTypes; ++t) {
     nlohmann::json row = nlohmann::json::object();

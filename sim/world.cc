@@ -26,7 +26,7 @@ std::string WorldXml(const WorldSpec& spec) {
   // crawling robot's views (1.4 mm pixels at 0.3 m) into patterns that differ between the two
   // eyes, so stereo matches garbage there; on the course's start views this also halves the
   // median disparity error (0.10 -> 0.05 px)
-  const double texrepeat_per_m = 0.5;
+  constexpr double kTexRepeatPerMetre = 0.5;
   std::ostringstream xml;
   xml << std::setprecision(9);
   xml << "<mujoco model=\"fognav_world\">\n";
@@ -45,12 +45,12 @@ std::string WorldXml(const WorldSpec& spec) {
          "    <texture name=\"fognav_object_tex\" type=\"2d\" builtin=\"flat\" width=\"512\" height=\"512\"\n"
          "             rgb1=\"1 1 1\" rgb2=\"1 1 1\" mark=\"random\" random=\"0.45\" markrgb=\"0.2 0.2 0.2\"/>\n"
          "    <material name=\"fognav_floor_mat\" texture=\"fognav_floor_tex\" texrepeat=\""
-      << texrepeat_per_m << " " << texrepeat_per_m << "\"\n"
+      << kTexRepeatPerMetre << " " << kTexRepeatPerMetre << "\"\n"
          "              texuniform=\"true\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   for (size_t i = 0; i < std::size(kObjectColours); ++i) {
     xml << "    <material name=\"fognav_object_mat" << i
-        << "\" texture=\"fognav_object_tex\" texrepeat=\"" << texrepeat_per_m << " "
-        << texrepeat_per_m << "\" texuniform=\"true\" rgba=\""
+        << "\" texture=\"fognav_object_tex\" texrepeat=\"" << kTexRepeatPerMetre << " "
+        << kTexRepeatPerMetre << "\" texuniform=\"true\" rgba=\""
         << kObjectColours[i] << " 1\" specular=\"0\" shininess=\"0\" reflectance=\"0\"/>\n";
   }
   xml << "  </asset>\n";

@@ -117,7 +117,6 @@ class Lattice {
 
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
-  // True if no tunnel cell lies under the crawling footprint at `cell`, `heading`.
   // Whether cell may lie under a footprint of posture q if level with its origin: a border
   // cell, for crawling only in the crawl zone.
   bool MayBeLevelBorder(size_t cell, int q) const;
@@ -125,6 +124,8 @@ class Lattice {
   // standing footprint at (cell, heading) and within head_reach + margin of it; true if the FOG
   // does not say or get_up_under_seen_headroom is off.
   bool HeadroomSeen(int cell, int heading) const;
+  // True if no tunnel cell lies under the crawling footprint at `cell`, `heading` up to
+  // kneel_clear_reach ahead of the standing origin (kneel_steps_ behind `cell`).
   bool CrawlFootprintInOpen(int cell, int heading) const;
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // fewest lattice steps along its heading that end in a valid standing state on a floor more
