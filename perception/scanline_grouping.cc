@@ -23,6 +23,19 @@ using internal::Rms;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// Label images are mostly uniform inside regions, so the full-image passes below skip runs of
+// kChunk pixels whose labels all equal those of their neighbours in the given offsets (a loop
+// the compiler vectorises); the caller keeps every offset inside the image.
+constexpr int kChunk = 8;
+
+template <int kOffsets>
+bool UniformChunk(const int32_t* lab, int i, const int (&offsets)[kOffsets]) {
+  int32_t acc = 0;
+  for (int k = i; k < i + kChunk; ++k)
+    for (int o : offsets) acc |= lab[k] ^ lab[k + o];
+  return acc == 0;
+}
+
 // A planar region under construction: its moments and current fit.
 struct Region {
   Moments m;
@@ -269,17 +282,29 @@ class Grouper {
     constexpr uint8_t kQueued = 0x80;
     constexpr int kMaxVisits = 3;
 
+    // border points in raster order (invalid points are never labelled, so a uniform chunk holds
+    // no border point)
     auto differs = [&](int i, int j) { return valid[size_t(j)] && lab[j] != lab[i]; };
+    auto visit = [&](int u, int v) {
+      const int i = v * w + u;
+      if (!valid[size_t(i)]) return;
+      const bool border = (u > 0 && differs(i, i - 1)) || (u + 1 < w && differs(i, i + 1)) ||
+                          (v > 0 && differs(i, i - w)) || (v + 1 < h && differs(i, i + w));
+      if (!border) return;
+      queue.push_back(i);
+      visits[size_t(i)] |= kQueued;
+    };
+    const int around[4] = {-1, 1, -w, w};
     for (int v = 0; v < h; ++v) {
-      for (int u = 0; u < w; ++u) {
-        const int i = v * w + u;
-        if (!valid[size_t(i)]) continue;
-        const bool border = (u > 0 && differs(i, i - 1)) || (u + 1 < w && differs(i, i + 1)) ||
-                            (v > 0 && differs(i, i - w)) || (v + 1 < h && differs(i, i + w));
-        if (!border) continue;
-        queue.push_back(i);
-        visits[size_t(i)] |= kQueued;
+      int u = 0;
+      if (v > 0 && v + 1 < h) {
+        visit(u++, v);
+        for (; u + kChunk < w; u += kChunk) {
+          if (UniformChunk(lab, v * w + u, around)) continue;
+          for (int k = u; k < u + kChunk; ++k) visit(k, v);
+        }
       }
+      for (; u < w; ++u) visit(u, v);
     }
 
     int cands[5];
@@ -389,18 +414,27 @@ class Grouper {
     std::vector<std::pair<int, int>>& pairs = ws_.pairs;
     pairs.clear();
     const int32_t* lab = labels.data.data();
+    auto visit = [&](int u, int v) {
+      const int a = lab[v * w + u];
+      if (a < 0) return;
+      auto add = [&](int b) {
+        if (b < 0 || b == a) return;
+        const std::pair<int, int> pr(std::min(a, b), std::max(a, b));
+        if (pairs.empty() || pairs.back() != pr) pairs.push_back(pr);
+      };
+      if (u + 1 < w) add(lab[v * w + u + 1]);
+      if (v + 1 < h) add(lab[(v + 1) * w + u]);
+    };
+    const int right_and_below[2] = {1, w};
     for (int v = 0; v < h; ++v) {
-      for (int u = 0; u < w; ++u) {
-        const int a = lab[v * w + u];
-        if (a < 0) continue;
-        auto add = [&](int b) {
-          if (b < 0 || b == a) return;
-          const std::pair<int, int> pr(std::min(a, b), std::max(a, b));
-          if (pairs.empty() || pairs.back() != pr) pairs.push_back(pr);
-        };
-        if (u + 1 < w) add(lab[v * w + u + 1]);
-        if (v + 1 < h) add(lab[(v + 1) * w + u]);
+      int u = 0;
+      if (v + 1 < h) {
+        for (; u + kChunk < w; u += kChunk) {
+          if (UniformChunk(lab, v * w + u, right_and_below)) continue;
+          for (int k = u; k < u + kChunk; ++k) visit(k, v);
+        }
       }
+      for (; u < w; ++u) visit(u, v);
     }
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
@@ -479,16 +513,20 @@ class Grouper {
     for (int v = 0; v < h; ++v) {
       int32_t* row = &out->labels.data[size_t(v) * w];
       touched.clear();
-      for (int u = 0; u < w; ++u) {
-        if (row[u] < 0) continue;
-        const int k = idx[size_t(row[u])];
-        row[u] = k;
+      // one run of equal labels at a time
+      for (int u0 = 0, u1; u0 < w; u0 = u1) {
+        const int32_t label = row[u0];
+        for (u1 = u0 + 1; u1 < w && row[u1] == label; ++u1) {
+        }
+        if (label < 0) continue;
+        const int k = idx[size_t(label)];
+        std::fill(row + u0, row + u1, k);
         if (k < 0) continue;
         if (first[size_t(k)] < 0) {
-          first[size_t(k)] = u;
+          first[size_t(k)] = u0;
           touched.push_back(k);
         }
-        last[size_t(k)] = u;
+        last[size_t(k)] = u1 - 1;
       }
       for (int k : touched) {
         out->planes[size_t(k)].border.push_back({v, first[size_t(k)], last[size_t(k)]});
