@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace fognav::perception::internal {
 namespace {
@@ -89,17 +90,12 @@ class RowSplitter {
     const Moments m = RangeMoments(s_, i0, i1);
     const Line2 line = FitLine(m, sp_);
     // max-count-consecutive-same-side, stopping as soon as a run reaches C_max
-    const double off = line.na * line.ma + line.nc * line.mc, tol = p_.side_tolerance;
-    // (branch-free: the sides of noisy points are random and would defeat branch prediction)
-    int run = 0, side = 0, longest = 0;
-    for (int i = i0; i <= i1; ++i) {
-      const double r = line.na * s_.a[size_t(i)] + line.nc * s_.c[size_t(i)] - off;
-      const int sd = int(r > tol) - int(r < -tol);
-      run = (run * int(sd == side) + 1) * int(sd != 0);
-      side = sd;
-      longest = std::max(longest, run);
-      if (longest >= p_.c_max) break;
-    }
+    const double off = line.na * line.ma + line.nc * line.mc;
+    const double* a = &s_.a[size_t(i0)];
+    const double* c = &s_.c[size_t(i0)];
+    const int longest = LongestSameSideRun(
+        n, [&](int i) { return line.na * a[i] + line.nc * c[i] - off; }, p_.side_tolerance,
+        p_.c_max);
     const bool split = longest >= p_.c_max;
     if (!split || n < 3) {
       Emit(i0, i1, m, line);
@@ -152,15 +148,8 @@ class RowSplitter {
 }  // namespace
 
 int MaxConsecutiveSameSide(const double* residuals, int count, double tolerance) {
-  int best = 0, run = 0, side = 0;
-  for (int i = 0; i < count; ++i) {
-    const double r = residuals[i];
-    const int s = int(r > tolerance) - int(r < -tolerance);
-    run = (run * int(s == side) + 1) * int(s != 0);
-    side = s;
-    best = std::max(best, run);
-  }
-  return best;
+  return LongestSameSideRun(
+      count, [&](int i) { return residuals[i]; }, tolerance, std::numeric_limits<int>::max());
 }
 
 void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out,
@@ -176,63 +165,68 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
   s.a.resize(size_t(w));
   s.c.resize(size_t(w));
   s.prefix.resize(size_t(w) + 1);
+  s.cut.resize(size_t(w) + 1);
 
+  const int max_step = p.max_gap_px + 1;
+  const bool cut_jumps = p.jump_ratio > 0;
   for (int v = 0; v < h; ++v) {
     out->row_begin[size_t(v)] = int(out->lines.size());
-    // read the row's points once: valid mask, compact list, running sums
+    // read the row's points once: valid mask, compact list, running sums, and the cuts into
+    // runs at gaps and depth jumps (s.cut[j] is the first index of run j)
     const Eigen::Vector3f* row = &points.points[size_t(v) * w];
     uint8_t* valid = &out->valid[size_t(v) * w];
-    int n = 0;
+    int n = 0, cuts = 0;
     ScanPlane sp;  // 2D coordinates: a = x, c = (ty y + z) / k
     double inv_k = 1;
-    std::array<double, 9> sum{};
-    s.prefix[0] = sum;
+    // the running sums and the previous point live in registers, not in the scratch arrays
+    double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+    int prev_u = 0;
+    double prev_c = 0;  // |c| of the previous point
+    s.prefix[0] = {};
     for (int u = 0; u < w; ++u) {
       const Eigen::Vector3f& q = row[u];
-      if (!q.allFinite()) continue;
-      valid[u] = 1;
       const double x = q.x(), y = q.y(), z = q.z();
+      // finite iff all three are (double sums of floats cannot overflow)
+      if (!std::isfinite(x + y + z)) continue;
+      valid[u] = 1;
       if (n == 0) {
         // the scan line's plane through the camera centre, from its first point
         sp.ty = z != 0 ? y / z : 0;
         sp.k = std::sqrt(1 + sp.ty * sp.ty);
         inv_k = 1 / sp.k;
       }
+      const double c = (sp.ty * y + z) * inv_k, abs_c = std::abs(c);
+      if (n == 0 || u - prev_u > max_step ||
+          (cut_jumps && std::abs(abs_c - prev_c) > p.jump_ratio * std::min(abs_c, prev_c)))
+        s.cut[size_t(cuts++)] = n;
+      prev_u = u;
+      prev_c = abs_c;
       s.u[size_t(n)] = u;
       s.a[size_t(n)] = x;
-      s.c[size_t(n)] = (sp.ty * y + z) * inv_k;
-      sum[0] += x;
-      sum[1] += y;
-      sum[2] += z;
-      sum[3] += x * x;
-      sum[4] += x * y;
-      sum[5] += x * z;
-      sum[6] += y * y;
-      sum[7] += y * z;
-      sum[8] += z * z;
-      s.prefix[size_t(++n)] = sum;
+      s.c[size_t(n)] = c;
+      sx += x;
+      sy += y;
+      sz += z;
+      sxx += x * x;
+      sxy += x * y;
+      sxz += x * z;
+      syy += y * y;
+      syz += y * z;
+      szz += z * z;
+      s.prefix[size_t(++n)] = {sx, sy, sz, sxx, sxy, sxz, syy, syz, szz};
     }
     if (n < p.n_min) continue;
+    s.cut[size_t(cuts)] = n;
 
-    // cut into runs at gaps and depth jumps, then split each run into line segments
+    // split each run into line segments
     RowSplitter splitter(p, v, row, sp, &s, &out->lines);
-    int start = 0;
-    for (int i = 1; i <= n; ++i) {
-      bool cut = i == n;
-      if (!cut) {
-        cut = s.u[size_t(i)] - s.u[size_t(i) - 1] > p.max_gap_px + 1;
-        if (!cut && p.jump_ratio > 0) {
-          const double c0 = std::abs(s.c[size_t(i) - 1]), c1 = std::abs(s.c[size_t(i)]);
-          cut = std::abs(c1 - c0) > p.jump_ratio * std::min(c0, c1);
-        }
-      }
-      if (!cut) continue;
+    for (int j = 0; j < cuts; ++j) {
+      const int i0 = s.cut[size_t(j)], i1 = s.cut[size_t(j) + 1] - 1;
       if (p.method == LineMethod::kRdSplit) {
-        splitter.RdSplit(start, i - 1);
+        splitter.RdSplit(i0, i1);
       } else {
-        splitter.Split(start, i - 1);
+        splitter.Split(i0, i1);
       }
-      start = i;
     }
   }
   out->row_begin[size_t(h)] = int(out->lines.size());

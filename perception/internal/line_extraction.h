@@ -44,6 +44,7 @@ struct ScanlineScratch {
   std::vector<int> u;
   std::vector<double> a, c;                    // 2D coordinates in the scan line's plane
   std::vector<std::array<double, 9>> prefix;   // running sums x y z xx xy xz yy yz zz
+  std::vector<int> cut;                        // first index of each run, then the count
 };
 
 // Reads every point of the image once and cuts each scan line into line segments with
@@ -54,6 +55,25 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
 // max-count-consecutive-same-side: the longest run of consecutive residuals with the same sign,
 // where |r| <= tolerance breaks a run.
 int MaxConsecutiveSameSide(const double* residuals, int count, double tolerance);
+
+// The same over residual(0) ... residual(count - 1), stopping as soon as a run reaches stop_at.
+// Branch-free but for the stop (the sides of noisy points are random and would defeat branch
+// prediction), and the loop carries only the start of the current run and the longest length,
+// not a run counter whose update would chain multiply or compare-and-add latencies.
+template <typename Residual>
+int LongestSameSideRun(int count, Residual residual, double tolerance, int stop_at) {
+  int longest = 0, start = 0, side = 0;
+  for (int i = 0; i < count; ++i) {
+    const double r = residual(i);
+    const int sd = int(r > tolerance) - int(r < -tolerance);
+    start = sd != side ? i : start;
+    side = sd;
+    const int run = sd != 0 ? i - start + 1 : 0;
+    longest = run > longest ? run : longest;
+    if (longest >= stop_at) break;
+  }
+  return longest;
+}
 
 }  // namespace fognav::perception::internal
 
