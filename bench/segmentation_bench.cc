@@ -1,6 +1,7 @@
 // Benchmarks of stereo range data and plane segmentation on analytic scenes (a floor, a
 // three-step staircase, a low box and a wall), with OpenCV's RgbdPlane beside ours when the
-// rgbd module is available. Counters: planes found and the Table 2 accuracy / coverage against
+// rgbd module is available and PCL's OrganizedMultiPlaneSegmentation when libpcl-dev is
+// installed. Counters: planes found and the Table 2 accuracy / coverage against
 // the scene's surfaces (DESIGN.md "Ground truth").
 #include <cmath>
 #include <map>
@@ -10,6 +11,12 @@
 #ifdef FOGNAV_HAVE_OPENCV_RGBD
 #include <opencv2/core.hpp>
 #include <opencv2/rgbd.hpp>
+#endif
+#ifdef FOGNAV_HAVE_PCL
+#include <pcl/features/integral_image_normal.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/segmentation/organized_multi_plane_segmentation.h>
 #endif
 
 #include "perception/internal/scanline_scenes.h"
@@ -174,6 +181,66 @@ BENCHMARK(BM_OpenCvRgbdPlane)
     ->Name("OpenCvRgbdPlane/320x240")->Args({320, 240})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_OpenCvRgbdPlane)
     ->Name("OpenCvRgbdPlane/640x480")->Args({640, 480})->Unit(benchmark::kMillisecond);
+#endif
+
+#ifdef FOGNAV_HAVE_PCL
+// PCL's plane finder on the same point images: integral-image normals (covariance method), then
+// OrganizedMultiPlaneSegmentation with refinement (segmentAndRefine); the timing includes the
+// normals. Thresholds: 2 cm to the plane, 3 degrees between normals, and PCL's default of 1000
+// inliers at 640x480 scaled with the image (w h / 300, at least 30).
+void BM_PclOrganizedMultiPlane(benchmark::State& state) {
+  const BenchInput& in = Input(int(state.range(0)), int(state.range(1)));
+  const int w = in.points.width, h = in.points.height;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>(w, h));
+  cloud->is_dense = false;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      const Eigen::Vector3f& p = in.points.at(u, v);
+      (*cloud)(u, v) = pcl::PointXYZ(p.x(), p.y(), p.z());
+    }
+  pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> normals_of;
+  normals_of.setNormalEstimationMethod(normals_of.COVARIANCE_MATRIX);
+  normals_of.setMaxDepthChangeFactor(0.02f);
+  normals_of.setNormalSmoothingSize(float(std::max(5, w / 32)));
+  pcl::OrganizedMultiPlaneSegmentation<pcl::PointXYZ, pcl::Normal, pcl::Label> planes_of;
+  planes_of.setMinInliers(unsigned(std::max(30, w * h / 300)));
+  planes_of.setAngularThreshold(3 * M_PI / 180);
+  planes_of.setDistanceThreshold(0.02);
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+  std::vector<pcl::PlanarRegion<pcl::PointXYZ>,
+              Eigen::aligned_allocator<pcl::PlanarRegion<pcl::PointXYZ>>>
+      regions;
+  std::vector<pcl::ModelCoefficients> coefficients;
+  std::vector<pcl::PointIndices> inliers, label_indices, boundaries;
+  pcl::PointCloud<pcl::Label>::Ptr plane_labels;
+  for (auto _ : state) {
+    // a fresh label cloud each time: segment() resizes the one it is given without resetting
+    // it, and stale labels from the last call make its union-find loop forever
+    plane_labels.reset(new pcl::PointCloud<pcl::Label>);
+    regions.clear();
+    coefficients.clear();
+    inliers.clear();
+    label_indices.clear();
+    boundaries.clear();
+    normals_of.setInputCloud(cloud);
+    normals_of.compute(*normals);
+    planes_of.setInputNormals(normals);
+    planes_of.setInputCloud(cloud);
+    planes_of.segmentAndRefine(regions, coefficients, inliers, plane_labels, label_indices,
+                               boundaries);
+    benchmark::DoNotOptimize(inliers.data());
+  }
+  LabelImage labels(w, h, -1);
+  for (size_t k = 0; k < inliers.size(); ++k)
+    for (int i : inliers[k].indices) labels.data[size_t(i)] = int(k);
+  SetScoreCounters(state, labels, in);
+}
+BENCHMARK(BM_PclOrganizedMultiPlane)
+    ->Name("PclOrganizedMultiPlane/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PclOrganizedMultiPlane)
+    ->Name("PclOrganizedMultiPlane/320x240")->Args({320, 240})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PclOrganizedMultiPlane)
+    ->Name("PclOrganizedMultiPlane/640x480")->Args({640, 480})->Unit(benchmark::kMillisecond);
 #endif
 
 }  // namespace
