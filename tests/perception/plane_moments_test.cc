@@ -96,6 +96,24 @@ TEST(MaxConsecutiveSameSide, CountsTheLongestRun) {
   EXPECT_EQ(MaxConsecutiveSameSide(r.data(), int(r.size()), 0.15), 1);
 }
 
+TEST(LongestSameSideRun, StopsOnceARunReachesTheLimit) {
+  // sides + - + + + 0 + + -: runs 1, 1, 3, 0, 2, 1
+  const std::vector<double> r = {0.1, -0.2, 0.3, 0.1, 0.2, 0.0, 0.4, 0.1, -0.1};
+  int read = 0;
+  auto residual = [&](int i) {
+    ++read;
+    return r[size_t(i)];
+  };
+  EXPECT_EQ(LongestSameSideRun(int(r.size()), residual, 0.01, 2), 2);
+  EXPECT_EQ(read, 4);  // the run of three reaches two at index 3
+  read = 0;
+  EXPECT_EQ(LongestSameSideRun(int(r.size()), residual, 0.01, 100), 3);
+  EXPECT_EQ(read, int(r.size()));
+  // a run that starts after a zero counts from its own start
+  const std::vector<double> z = {0.0, 0.0, 0.5, 0.5};
+  EXPECT_EQ(LongestSameSideRun(int(z.size()), [&](int i) { return z[size_t(i)]; }, 0.01, 100), 2);
+}
+
 // One scan line (row 0) of a point image: points at depths z(u) along the optical axis.
 PointImage Row(const std::vector<double>& z) {
   PointImage img(int(z.size()), 1);
