@@ -96,6 +96,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   sim::Renderer renderer(m);
 
   perception::MapState maps;
+  // the odometry's own noise model: the covariance one footstep adds
+  perception::LocalizationState localization;
+  const Eigen::Matrix3d step_covariance =
+      Eigen::Vector3d(scenario.odometry_noise_xy * scenario.odometry_noise_xy,
+                      scenario.odometry_noise_xy * scenario.odometry_noise_xy,
+                      scenario.odometry_noise_yaw * scenario.odometry_noise_yaw).asDiagonal();
   double believed_floor_z = 0;  // odometry: the sum of the commanded rises
   std::map<std::string, int> actions;
   for (const auto& name : ActionNames()) actions[name] = 0;
@@ -145,7 +151,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   };
   auto run_controller = [&]() {
     auto start = Clock::now();
+    const perception::Pose2 before = ToPerception(controller.believed_pose());
+    const int steps_before = controller.steps();
     controller.RunUntilIdle(m, d, on_tick);
+    perception::PredictPose(before, ToPerception(controller.believed_pose()),
+                            (controller.steps() - steps_before) * step_covariance, &localization);
     timing["control"].push_back(Ms(start));
   };
 
@@ -164,10 +174,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
                                scenario.sensor);
     timing["render"].push_back(Ms(start));
     last_view = PerceiveView(perception_params, scenario.sensor.depth, last_stereo, humanoid,
-                             robot_G, X_GC, body_G, &maps);
-    timing["stereo"].push_back(last_view.stereo_ms);
-    timing["segmentation"].push_back(last_view.segmentation_ms);
-    timing["mapping"].push_back(last_view.mapping_ms);
+                             robot_G, X_GC, body_G, &maps, &localization);
+    const perception::Pose2& localized = last_view.robot_G;
+    controller.CorrectBelievedPose({localized.x, localized.y, localized.yaw});
   };
   auto look_around = [&]() {
     current_move = "look";

@@ -68,8 +68,9 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
                         const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
                         const Eigen::Isometry3d& X_GC,
                         const std::vector<perception::OrientedBox>& body_G,
-                        perception::MapState* maps) {
+                        perception::MapState* maps, perception::LocalizationState* localization) {
   ViewResult result;
+  result.robot_G = robot_G;
   // range data: stereo matching of the pair, or the depth buffer
   auto start = Clock::now();
   if (mode == DepthMode::kStereo) {
@@ -97,12 +98,30 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   result.segmentation_ms = MillisecondsSince(start);
   result.segmentation = perception::ScoreSegmentation(result.planes.labels, truth, truth_depth);
 
+  // the pose, corrected by the walls seen before; the camera and body move with it
+  Eigen::Isometry3d X_GC_used = X_GC;
+  std::vector<perception::OrientedBox> body_G_used = body_G;
+  if (localization != nullptr) {
+    auto planar = [](const perception::Pose2& p) {
+      return Eigen::Isometry3d(Eigen::Translation3d(p.x, p.y, 0) *
+                               Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()));
+    };
+    const Eigen::Isometry3d X_RC = planar(robot_G).inverse() * X_GC;
+    result.robot_G = perception::CorrectPose(params.localization, result.planes.planes,
+                                             result.points.width * result.points.height, X_RC,
+                                             robot_G, localization);
+    const Eigen::Isometry3d X_new_old = planar(result.robot_G) * planar(robot_G).inverse();
+    X_GC_used = X_new_old * X_GC;
+    for (perception::OrientedBox& box : body_G_used) box.X_FB = X_new_old * box.X_FB;
+  }
+
   // maps
   start = Clock::now();
   perception::MapInput input;
-  input.robot_G = robot_G;
-  input.p_GC = X_GC.translation();
-  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G);
+  input.robot_G = result.robot_G;
+  input.p_GC = X_GC_used.translation();
+  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC_used,
+                                         body_G_used);
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);
   return result;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "perception/localization.h"
 #include "perception/mapping.h"
 #include "perception/segmentation.h"
 #include "scenarios/scenario.h"
@@ -35,6 +36,7 @@ struct PerceptionParams {
   bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
   perception::LabelParams label;
   perception::MapParams map = MapDefaults();
+  perception::LocalizationParams localization;
 };
 
 // What one view gave, for frames and reports.
@@ -44,6 +46,7 @@ struct ViewResult {
   perception::PlaneSet planes;
   perception::SegmentationScore segmentation;
   perception::StereoScore stereo;  // range data against the renderer's depth
+  perception::Pose2 robot_G;       // the pose the maps were updated with (localized if asked)
   double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0;
 };
 
@@ -56,12 +59,15 @@ perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
                                      const sim::Humanoid& humanoid);
 
 // Perceives one stereo view and updates the maps. X_GC is the left camera in the grid frame
-// and body_G the robot's body boxes in the grid frame, both from odometry and kinematics.
+// and body_G the robot's body boxes in the grid frame, both from odometry and kinematics. With
+// `localization` the view's vertical planes first correct robot_G (CorrectPose), and the maps
+// are updated with the corrected pose, which the result returns.
 ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
                         const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
                         const Eigen::Isometry3d& X_GC,
                         const std::vector<perception::OrientedBox>& body_G,
-                        perception::MapState* maps);
+                        perception::MapState* maps,
+                        perception::LocalizationState* localization = nullptr);
 
 // The ground-truth FOG of the scenario's world in the window; the grid frame is the world frame
 // shifted by `X_GW` (identity while odometry has no error).

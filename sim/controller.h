@@ -142,6 +142,9 @@ class Controller {
 
   // Footstep odometry: where the robot believes it is (odometry frame = world at Reset).
   const Pose2& believed_pose() const { return believed_; }
+  // Replaces the believed pose with a localized one (odometry frame); later strides compose
+  // onto it.
+  void CorrectBelievedPose(const Pose2& pose) { believed_ = pose; }
   // Ground truth from MuJoCo's kinematics (for scoring): the robot frame in the world.
   Pose2 TruePose(const mjData* d) const;
   // Footsteps executed so far (each foot placement counts one; crawl cycles count 4).

@@ -61,12 +61,11 @@ TEST_P(Suite, MeetsItsExpectations) {
   }
 }
 
-// Missions that meet their expectations today; noisy_odometry does not yet (see the README's
-// status) and is run by hand.
+// The whole suite of scenarios/.
 INSTANTIATE_TEST_SUITE_P(Missions, Suite,
                          ::testing::Values("stairs_and_table", "obstacles", "narrow_gap", "stairs",
                                            "table", "low_table", "drop_off", "enclosed", "slalom",
-                                           "turn_first"));
+                                           "turn_first", "noisy_odometry"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;

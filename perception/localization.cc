@@ -1,0 +1,150 @@
+#include "perception/localization.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fognav::perception {
+namespace {
+
+double WrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
+
+// A vertical plane as a line on the floor, robot frame.
+struct LineObservation {
+  double angle = 0;                               // of its normal
+  Eigen::Vector2d centroid_R = Eigen::Vector2d::Zero();
+  double half_length = 0;                         // along the line, metres
+  double range = 0;                               // camera to centroid, metres
+};
+
+bool ObserveLine(const LocalizationParams& params, const Plane& plane_C, int image_pixels,
+                 const Eigen::Isometry3d& X_RC, LineObservation* line) {
+  if (plane_C.num_points < params.min_image_fraction * image_pixels) return false;
+  if (plane_C.rms > params.max_rms) return false;
+  const Eigen::Vector3d n_R = X_RC.linear() * plane_C.n;
+  if (std::abs(n_R.z()) > params.max_normal_z) return false;
+  const Eigen::Vector3d c_C = plane_C.Centroid();
+  line->range = c_C.norm();
+  if (line->range > params.max_range) return false;
+  const Eigen::Vector2d n = n_R.head<2>().normalized();
+  line->angle = std::atan2(n.y(), n.x());
+  line->centroid_R = (X_RC * c_C).head<2>();
+  // extent from the points' spread along the line (uniform: half length sqrt(3) sigma)
+  const Eigen::Vector3d t_C = X_RC.linear().transpose() * Eigen::Vector3d(-n.y(), n.x(), 0);
+  const Eigen::Matrix3d spread = plane_C.A / plane_C.num_points - c_C * c_C.transpose();
+  line->half_length = std::sqrt(3 * std::max(0.0, t_C.dot(spread * t_C)));
+  return 2 * line->half_length >= params.min_length;
+}
+
+// The observation in the grid frame for the robot at `pose`.
+struct GridLine {
+  double angle = 0;
+  Eigen::Vector2d centroid_G = Eigen::Vector2d::Zero();
+};
+
+GridLine ToGrid(const LineObservation& line, const Pose2& pose) {
+  return {WrapAngle(line.angle + pose.yaw),
+          Eigen::Rotation2Dd(pose.yaw) * line.centroid_R + Eigen::Vector2d(pose.x, pose.y)};
+}
+
+Eigen::Vector2d Normal(double angle) { return {std::cos(angle), std::sin(angle)}; }
+
+}  // namespace
+
+void PredictPose(const Pose2& before, const Pose2& after, const Eigen::Matrix3d& increment_covariance,
+                 LocalizationState* state) {
+  // pose' = pose (+) increment: the Jacobians with respect to the pose and the increment
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  F(0, 2) = -(after.y - before.y);
+  F(1, 2) = after.x - before.x;
+  Eigen::Matrix3d G = Eigen::Matrix3d::Identity();
+  G.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(before.yaw).toRotationMatrix();
+  Eigen::MatrixXd& P = state->covariance;
+  const Eigen::Index n = P.rows();
+  P.topLeftCorner<3, 3>() = F * P.topLeftCorner<3, 3>() * F.transpose() +
+                            G * increment_covariance * G.transpose();
+  P.topRightCorner(3, n - 3) = F * P.topRightCorner(3, n - 3);
+  P.bottomLeftCorner(n - 3, 3) = P.topRightCorner(3, n - 3).transpose();
+}
+
+Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& planes_C,
+                  int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G, LocalizationState* state) {
+  Pose2 pose = pose_G;
+  Eigen::MatrixXd& P = state->covariance;
+  for (const Plane& plane : planes_C) {
+    LineObservation line;
+    if (!ObserveLine(params, plane, image_pixels, X_RC, &line)) continue;
+    const GridLine g = ToGrid(line, pose);
+    const double offset_sigma = params.offset_sigma + params.offset_sigma_per_m2 * line.range * line.range;
+    const Eigen::Matrix2d R =
+        Eigen::Vector2d(params.angle_sigma * params.angle_sigma, offset_sigma * offset_sigma).asDiagonal();
+    const Eigen::Vector2d arm_G = g.centroid_G - Eigen::Vector2d(pose.x, pose.y);
+    const Eigen::Vector2d perp_arm(-arm_G.y(), arm_G.x());
+    const Eigen::Index n_state = P.rows();
+
+    // for each landmark: the error e = (angle difference, distance of the centroid from its
+    // line), zero if pose and landmark are right, and e's Jacobian J over the state; the line
+    // must gate exactly one landmark
+    int matched = -1, gated = 0;
+    bool near_one = false;
+    Eigen::Vector2d error;
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, n_state), J_i = J;
+    for (size_t i = 0; i < state->landmarks.size(); ++i) {
+      const WallLandmark& landmark = state->landmarks[i];
+      const Eigen::Vector2d n = Normal(landmark.angle), t(-n.y(), n.x());
+      const Eigen::Vector2d e(WrapAngle(g.angle - landmark.angle), n.dot(g.centroid_G) - landmark.offset);
+      if (std::abs(e.x()) < params.near_angle && std::abs(e.y()) < params.near_offset) near_one = true;
+      const Eigen::Index k = 3 + 2 * Eigen::Index(i);
+      J_i.setZero();
+      J_i(0, 2) = 1;
+      J_i(0, k) = -1;
+      J_i(1, 0) = n.x();
+      J_i(1, 1) = n.y();
+      J_i(1, 2) = n.dot(perp_arm);
+      J_i(1, k) = t.dot(g.centroid_G);
+      J_i(1, k + 1) = -1;
+      const Eigen::Matrix2d S = J_i * P * J_i.transpose() + R;
+      if (e.dot(S.inverse() * e) > params.gate * params.gate) continue;
+      ++gated;
+      matched = int(i);
+      error = e;
+      J = J_i;
+    }
+
+    if (gated == 0 && !near_one && int(state->landmarks.size()) < params.max_landmarks) {
+      // a new landmark: (angle, offset) from the pose and the observation, with both their
+      // uncertainties in the grown covariance
+      const Eigen::Vector2d n = Normal(g.angle), t(-n.y(), n.x());
+      state->landmarks.push_back({g.angle, n.dot(g.centroid_G), 0});
+      Eigen::Matrix<double, 2, 3> G_pose;
+      G_pose << 0, 0, 1, n.x(), n.y(), t.dot(g.centroid_G) + n.dot(perp_arm);
+      Eigen::Matrix2d G_obs;
+      G_obs << 1, 0, t.dot(g.centroid_G), 1;
+      P.conservativeResize(n_state + 2, n_state + 2);
+      P.bottomRightCorner<2, 2>() = G_pose * P.topLeftCorner<3, 3>() * G_pose.transpose() +
+                                    G_obs * R * G_obs.transpose();
+      P.block(n_state, 0, 2, n_state) = G_pose * P.topLeftCorner(3, n_state);
+      P.block(0, n_state, n_state, 2) = P.block(n_state, 0, 2, n_state).transpose();
+      continue;
+    }
+    if (gated != 1) continue;
+
+    // the Kalman update of pose and landmarks (Joseph form); noise-free odometry leaves the
+    // pose alone (its rows of the covariance stay zero) and refines only the landmarks
+    const Eigen::Matrix2d S = J * P * J.transpose() + R;
+    const Eigen::MatrixXd K = P * J.transpose() * S.inverse();
+    const Eigen::VectorXd delta = -K * error;
+    pose.x += delta(0);
+    pose.y += delta(1);
+    pose.yaw = WrapAngle(pose.yaw + delta(2));
+    for (size_t i = 0; i < state->landmarks.size(); ++i) {
+      state->landmarks[i].angle = WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
+      state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
+    }
+    const Eigen::MatrixXd I_KJ = Eigen::MatrixXd::Identity(n_state, n_state) - K * J;
+    P = I_KJ * P * I_KJ.transpose() + K * R * K.transpose();
+    ++state->landmarks[size_t(matched)].matches;
+  }
+  return pose;
+}
+
+}  // namespace fognav::perception

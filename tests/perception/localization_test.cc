@@ -1,0 +1,164 @@
+// Localization against walls: analytic planes seen from known poses in a corridor.
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "perception/localization.h"
+
+namespace fognav::perception {
+namespace {
+
+constexpr double kDeg = M_PI / 180;
+constexpr int kPixels = 176 * 144;
+
+// The head camera 0.5 m above the floor, looking along the robot's x (OpenCV axes).
+Eigen::Isometry3d CameraInRobot() {
+  Eigen::Matrix3d R_RC;
+  R_RC.col(0) = -Eigen::Vector3d::UnitY();  // camera x: right
+  R_RC.col(1) = -Eigen::Vector3d::UnitZ();  // camera y: down
+  R_RC.col(2) = Eigen::Vector3d::UnitX();   // camera z: forward
+  Eigen::Isometry3d X_RC = Eigen::Isometry3d::Identity();
+  X_RC.linear() = R_RC;
+  X_RC.translation() = Eigen::Vector3d(0, 0, 0.5);
+  return X_RC;
+}
+
+Eigen::Isometry3d Planar(const Pose2& p) {
+  return Eigen::Isometry3d(Eigen::Translation3d(p.x, p.y, 0) *
+                           Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()));
+}
+
+// The plane of the world rectangle from a to b (floor corners), 0 to `height` high, as the
+// segmentation would give it to a camera at X_WC: moments of a grid of its points.
+Plane SeenPlane(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height,
+                const Eigen::Isometry3d& X_WC) {
+  Plane plane;
+  const Eigen::Isometry3d X_CW = X_WC.inverse();
+  for (int i = 0; i <= 60; ++i) {
+    for (int k = 0; k <= 20; ++k) {
+      const Eigen::Vector2d q = a + (b - a) * (i / 60.0);
+      const Eigen::Vector3d p_C = X_CW * Eigen::Vector3d(q.x(), q.y(), height * k / 20.0);
+      ++plane.num_points;
+      plane.b += p_C;
+      plane.A += p_C * p_C.transpose();
+    }
+  }
+  const Eigen::Vector2d along = (b - a).normalized();
+  Eigen::Vector3d n_W(-along.y(), along.x(), 0);
+  const Eigen::Vector3d c_W = X_WC * plane.Centroid();
+  if (n_W.dot(X_WC.translation() - c_W) < 0) n_W = -n_W;  // towards the camera
+  plane.n = X_WC.linear().transpose() * n_W;
+  plane.d = plane.n.dot(plane.Centroid());
+  return plane;
+}
+
+// A corridor 1.2 m wide along x with a wall across it at x = 2.2.
+std::vector<Plane> CorridorSeenFrom(const Pose2& robot_W) {
+  const Eigen::Isometry3d X_WC = Planar(robot_W) * CameraInRobot();
+  const double x0 = robot_W.x + 1.0, x1 = robot_W.x + 2.0;
+  return {SeenPlane({x0, 0.6}, {x1, 0.6}, 0.3, X_WC), SeenPlane({x0, -0.6}, {x1, -0.6}, 0.3, X_WC),
+          SeenPlane({2.2, -0.5}, {2.2, 0.5}, 0.3, X_WC)};
+}
+
+TEST(Localization, NoiseFreeOdometryRecordsWallsButNeverMovesThePose) {
+  LocalizationState state;
+  const Pose2 start;
+  Pose2 pose = CorrectPose({}, CorridorSeenFrom(start), kPixels, CameraInRobot(), start, &state);
+  EXPECT_EQ(pose.x, 0);
+  EXPECT_EQ(pose.y, 0);
+  EXPECT_EQ(pose.yaw, 0);
+  ASSERT_EQ(state.landmarks.size(), 3u);
+  EXPECT_NEAR(std::abs(state.landmarks[0].angle), 90 * kDeg, 1e-9);
+  EXPECT_NEAR(state.landmarks[0].offset, -0.6, 1e-9);  // n = (0, -1): -y = -0.6
+  // the walls again from a believed pose that is 3 cm off: still no correction
+  const Pose2 moved{0.5, 0, 0}, believed{0.5, 0.03, 0};
+  PredictPose(start, believed, Eigen::Matrix3d::Zero(), &state);
+  pose = CorrectPose({}, CorridorSeenFrom(moved), kPixels, CameraInRobot(), believed, &state);
+  EXPECT_EQ(pose.y, 0.03);
+  EXPECT_EQ(pose.yaw, 0);
+}
+
+TEST(Localization, WallsSeenBeforeCorrectADriftedPose) {
+  LocalizationState state;
+  CorrectPose({}, CorridorSeenFrom({}), kPixels, CameraInRobot(), {}, &state);
+  // odometry says (1, 0, 0), uncertain by 20 cm and 10 deg (far more than the walls, which
+  // were seen from a known pose); the robot is elsewhere
+  const Pose2 truth{1.02, 0.05, 3 * kDeg}, believed{1.0, 0.0, 0.0};
+  const Eigen::Matrix3d prior = Eigen::Vector3d(0.04, 0.04, std::pow(10 * kDeg, 2)).asDiagonal();
+  PredictPose({}, believed, prior, &state);
+  const Pose2 pose = CorrectPose({}, CorridorSeenFrom(truth), kPixels, CameraInRobot(), believed, &state);
+  EXPECT_NEAR(pose.x, truth.x, 0.005);
+  EXPECT_NEAR(pose.y, truth.y, 0.005);
+  EXPECT_NEAR(pose.yaw, truth.yaw, 0.3 * kDeg);
+  // and the filter is surer than before in every direction
+  const Eigen::Matrix3d P = state.PoseCovariance();
+  for (int i = 0; i < 3; ++i) EXPECT_LT(P(i, i), prior(i, i) / 10) << i;
+  EXPECT_EQ(state.landmarks.size(), 3u);  // nothing new: the same three walls
+}
+
+TEST(Localization, OneWallCorrectsOnlyWhatItSees) {
+  LocalizationState state;
+  const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
+  CorrectPose({}, {SeenPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC)}, kPixels, CameraInRobot(), {}, &state);
+  const Pose2 truth{0.1, 0.04, 0}, believed{0.0, 0.0, 0.0};
+  PredictPose({}, believed, Eigen::Vector3d(0.04, 0.04, std::pow(2 * kDeg, 2)).asDiagonal(), &state);
+  const Eigen::Isometry3d X_WC_true = Planar(truth) * CameraInRobot();
+  const Pose2 pose = CorrectPose({}, {SeenPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC_true)}, kPixels,
+                                 CameraInRobot(), believed, &state);
+  EXPECT_NEAR(pose.y, truth.y, 0.01);  // across the wall
+  EXPECT_NEAR(pose.x, 0.0, 1e-6);      // along it: no information
+}
+
+TEST(Localization, AWallFarFromEveryLandmarkIsNewAndMovesNothing) {
+  LocalizationState state;
+  CorrectPose({}, CorridorSeenFrom({}), kPixels, CameraInRobot(), {}, &state);
+  PredictPose({}, {}, Eigen::Vector3d(0.0004, 0.0004, 0.0004).asDiagonal(), &state);
+  // a wall 0.4 m inside the left one: beyond the gate of a 2 cm pose uncertainty
+  const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
+  const Pose2 pose = CorrectPose({}, {SeenPlane({1, 0.2}, {2, 0.2}, 0.3, X_WC)}, kPixels,
+                                 CameraInRobot(), {}, &state);
+  EXPECT_EQ(pose.y, 0);
+  EXPECT_EQ(state.landmarks.size(), 4u);
+  EXPECT_EQ(state.covariance.rows(), 3 + 2 * 4);
+}
+
+TEST(Localization, FloorsSmallAndRoughPlanesAreNoLandmarks) {
+  LocalizationState state;
+  const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
+  // the floor ahead (horizontal)
+  Plane floor;
+  for (int i = 0; i < 50; ++i) {
+    for (int k = 0; k < 50; ++k) {
+      const Eigen::Vector3d p_C = X_WC.inverse() * Eigen::Vector3d(1 + i * 0.02, -0.5 + k * 0.02, 0);
+      ++floor.num_points;
+      floor.b += p_C;
+      floor.A += p_C * p_C.transpose();
+    }
+  }
+  floor.n = X_WC.linear().transpose() * Eigen::Vector3d::UnitZ();
+  floor.d = floor.n.dot(floor.Centroid());
+  // a wall too short (0.2 m), and a wall too rough
+  Plane short_wall = SeenPlane({1, 0.6}, {1.2, 0.6}, 0.3, X_WC);
+  Plane rough_wall = SeenPlane({1, -0.6}, {2, -0.6}, 0.3, X_WC);
+  rough_wall.rms = 0.02;
+  CorrectPose({}, {floor, short_wall, rough_wall}, kPixels, CameraInRobot(), {}, &state);
+  EXPECT_TRUE(state.landmarks.empty());
+  // too few points for this image size
+  CorrectPose({}, CorridorSeenFrom({}), 100 * kPixels, CameraInRobot(), {}, &state);
+  EXPECT_TRUE(state.landmarks.empty());
+}
+
+TEST(Localization, PredictionGrowsTheSidewaysUncertaintyWithTheHeadingsLeverArm) {
+  LocalizationState state;
+  state.covariance(2, 2) = std::pow(2 * kDeg, 2);
+  const Eigen::Matrix3d step = Eigen::Vector3d(1e-6, 1e-6, 0).asDiagonal();
+  PredictPose({}, {1.0, 0, 0}, step, &state);
+  // 1 m forward with a heading uncertain by 2 deg: sideways by about 1 m * 2 deg
+  EXPECT_NEAR(std::sqrt(state.covariance(1, 1)), std::hypot(1.0 * 2 * kDeg, 1e-3), 1e-6);
+  EXPECT_NEAR(state.covariance(0, 0), 1e-6, 1e-12);
+  EXPECT_NEAR(state.covariance(1, 2), std::pow(2 * kDeg, 2), 1e-12);
+}
+
+}  // namespace
+}  // namespace fognav::perception
