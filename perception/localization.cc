@@ -18,7 +18,7 @@ struct LineObservation {
 
 bool ObserveLine(const LocalizationParams& params, const Plane& plane_C, int image_pixels,
                  const Eigen::Isometry3d& X_RC, LineObservation* line) {
-  if (plane_C.num_points < params.min_image_fraction * image_pixels) return false;
+  if (plane_C.num_points < std::max(1.0, params.min_image_fraction * image_pixels)) return false;
   if (plane_C.rms > params.max_rms) return false;
   const Eigen::Vector3d n_R = X_RC.linear() * plane_C.n;
   if (std::abs(n_R.z()) > params.max_normal_z) return false;

@@ -4,8 +4,8 @@
 // drifts by decimetres over a course, so the loop corrects the odometry pose with the walls it
 // has seen before. Each landmark is the line a vertical plane leaves on the floor, stored in the
 // grid frame when first seen:
-//   angle theta of its normal (pointing to the side it was seen from), offset rho with
-//   n(theta) . p = rho for its points p, and its extent along the line.
+//   angle theta of its normal (pointing to the side it was seen from) and offset rho with
+//   n(theta) . p = rho for its points p (an infinite line: a wall seen further along matches).
 // One cycle: PredictPose with the odometry increment and its covariance, then CorrectPose with
 // the view's planes in the robot frame. With zero covariance (noise-free odometry) the pose is
 // never changed, only landmarks are recorded.
