@@ -21,6 +21,8 @@ float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double 
 
 namespace {
 
+constexpr uint8_t kConfirmed = 1, kLowerSeen = 2;
+
 // eq. (21) for a height h with sigma: within the gate the two are averaged by inverse variance;
 // beyond it the more precise one wins, with the paper's preference for the higher floor
 void FuseHeight(const FloorParams& p, float h, float h_sigma, size_t cell, MapState* state) {
@@ -57,6 +59,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   const double tol = params.floor.verify_tolerance;
   const float gate = float(params.floor.gate);
   const float nu = float(params.floor.smoothing);
+  const float lower_doubt = float(params.floor.lower_doubt);
   constexpr float kNegInf = -std::numeric_limits<float>::infinity();
 
   // eq. (20): keep a floor height only while the grid still holds it (P_Floor > P_occ)
@@ -72,6 +75,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
 
   // eq. (19, 21): insert floor points that the grid confirms
   s.floor_frame_h.assign(s.floor.size(), std::numeric_limits<float>::quiet_NaN());
+  s.floor_frame_marks.assign(s.floor.size(), 0);
   const float inv_res = float(1.0 / s.window.resolution);
   int last_ix = -1, last_iy = -1;
   float last_h = 0;
@@ -93,6 +97,18 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
     float& f = s.floor[cell];
     if (lp.h_sigma > 0) {
       FuseHeight(params.floor, lp.h, lp.h_sigma, cell, state);
+      // what this frame says about the cell's height, for the doubt after the frame: a lower
+      // floor counts only in the middle half of the cell, so the lower side of a step edge
+      // does not doubt the edge cell's higher floor
+      if (std::abs(lp.h - f) <= gate) {
+        s.floor_frame_marks[cell] |= kConfirmed;
+      } else if (lp.h < f && f - lp.h <= lower_doubt) {
+        const float u = lp.p_G.x() * inv_res - float(ix + s.window.origin_ix);
+        const float v = lp.p_G.y() * inv_res - float(iy + s.window.origin_iy);
+        if (std::abs(u - 0.5f) < 0.25f && std::abs(v - 0.5f) < 0.25f) {
+          s.floor_frame_marks[cell] |= kLowerSeen;
+        }
+      }
       continue;
     }
     s.floor_var[cell] = 0;
@@ -101,6 +117,25 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       f = lp.h;  // a new or higher floor: only the highest is kept
     } else {
       f = nu * f + (1.0f - nu) * lp.h;
+    }
+  }
+
+  // a height that this frame confirmed nowhere near the cell while it saw a lower floor in
+  // it: doubt it (the higher floor of a step edge is confirmed in the cells along the edge)
+  const GridWindow& w = s.window;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t cell = size_t(w.Index(ix, iy));
+      if (s.floor_frame_marks[cell] != kLowerSeen) continue;
+      bool confirmed_near = false;
+      for (int jy = std::max(0, iy - 1); jy <= std::min(w.size_y - 1, iy + 1); ++jy) {
+        for (int jx = std::max(0, ix - 1); jx <= std::min(w.size_x - 1, ix + 1); ++jx) {
+          const size_t other = size_t(w.Index(jx, jy));
+          confirmed_near |= (s.floor_frame_marks[other] & kConfirmed) != 0 &&
+                            std::abs(s.floor[other] - s.floor[cell]) <= gate;
+        }
+      }
+      if (!confirmed_near) s.floor_var[cell] *= 2;
     }
   }
 }

@@ -92,7 +92,8 @@ size_t MapState::MemoryBytes() const {
   return log_odds.capacity() * sizeof(float) + floor.capacity() * sizeof(float) +
          floor_var.capacity() * sizeof(float) +
          marks.capacity() + scratch.capacity() * sizeof(float) +
-         (floor_local.capacity() + floor_frame_h.capacity()) * sizeof(float);
+         (floor_local.capacity() + floor_frame_h.capacity()) * sizeof(float) +
+         floor_frame_marks.capacity();
 }
 
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,

@@ -164,6 +164,7 @@ struct FloorParams {
   // measurement is ignored.
   double min_sigma = 0.002;
   double replace_ratio = 4.0;
+  double lower_doubt = 0.05;  // metres; 0 turns the doubt off
   // Eq. (19, 20) read OG(x, y, h) as the highest probability of the layers that
   // [h - verify_tolerance, h + verify_tolerance] touches, so a floor lying on a layer boundary
   // is verified by either layer.
@@ -232,6 +233,7 @@ struct MapState {
   std::vector<float> scratch;
   std::vector<float> floor_local;
   std::vector<float> floor_frame_h;  // per cell, the last plane height fused in this frame
+  std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
 
   bool Empty() const { return log_odds.empty(); }
   // Occupancy probability of local cell (ix, iy, iz) (must be inside).

@@ -158,5 +158,42 @@ TEST(FloorMap, PreciseLowerHeightCorrectsANoisyOne) {
   EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.10, 1e-6);
 }
 
+// A wrong height that no later view confirms (a plane merged across a small step, seen once
+// from afar) yields to a lower floor seen in the middle of the cell in later frames.
+TEST(FloorMap, ALowerFloorSeenAgainAndAgainReplacesAHeightNothingConfirms) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.018f, 0.018f, 0.002f)), &state);
+  int frames = 0;
+  while (state.FloorAt(0.42, 0.02) > 0.01f && frames < 10) {
+    UpdateMaps(params, Frame(kSide, Patch(0.0f, 0.0f, 0.002f)), &state);
+    ++frames;
+  }
+  // equally precise: doubted twice (variance x4), then replaced as eq. (21) allows
+  EXPECT_EQ(frames, 3);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+}
+
+// The higher floor of a step edge cell stays while the same views confirm it along the edge.
+TEST(FloorMap, TheHigherFloorOfAStepEdgeStaysWhileItsNeighboursConfirmIt) {
+  MapParams params;
+  MapState state;
+  auto edge_frame = [](float edge_cell_h) {
+    std::vector<LabelledPoint> points = Patch(edge_cell_h, edge_cell_h, 0.002f);
+    // the tread goes on in the next cell along the edge, y in [0.04, 0.08)
+    for (LabelledPoint lp : Patch(0.03f, 0.03f, 0.002f)) {
+      lp.p_G.y() += 0.04f;
+      points.push_back(lp);
+    }
+    return Frame(kAbove, points);
+  };
+  UpdateMaps(params, edge_frame(0.03f), &state);
+  ASSERT_NEAR(state.FloorAt(0.42, 0.02), 0.03, 1e-6);
+  // five views that see only the lower floor in the edge cell but the tread beside it
+  for (int i = 0; i < 5; ++i) UpdateMaps(params, edge_frame(0.0f), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.03, 1e-6);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.06), 0.03, 1e-6);
+}
+
 }  // namespace
 }  // namespace fognav::perception
