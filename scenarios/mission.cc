@@ -50,6 +50,9 @@ struct ExecutionLimits {
   double crawl = 0.12;
   // without a path to the goal, the robot approaches it if that gains at least this much
   double min_approach = 0.1;
+  // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
+  double lost_yaw = 2.0 * M_PI / 180;
+  double side_look_pan = 0.8;  // rad
 };
 
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
@@ -311,20 +314,33 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     run_controller();
 
     // look where the robot is going, then perceive
-    if (controller.mode() == sim::Mode::kCrawling) {
+    auto crawl_view = [&](double pan, double wanted_elevation) {
       // the neck tilt that gives the wanted elevation, from the camera's kinematic pose
       const Eigen::Vector3d forward_R =
           sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).rotation().col(2);
       const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
       const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
-      const double wanted = kCrawlElevations[size_t(cycle) % kCrawlElevations.size()];
-      controller.MoveHead({0.0, tilt + elevation - wanted});
+      return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
+    };
+    if (controller.mode() == sim::Mode::kCrawling) {
+      controller.MoveHead(crawl_view(0.0, kCrawlElevations[size_t(cycle) % kCrawlElevations.size()]));
     } else {
       controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
     }
     run_controller();
     perceive();
     just_looked = false;
+
+    // crawling, the forward views rarely hold a wall: once unsure of the heading (noisy
+    // odometry only; noise-free odometry is exact), look to both sides for one
+    if (controller.mode() == sim::Mode::kCrawling &&
+        std::sqrt(localization.PoseCovariance()(2, 2)) > limits.lost_yaw) {
+      for (const double pan : {limits.side_look_pan, -limits.side_look_pan}) {
+        controller.MoveHead(crawl_view(pan, 0.0));
+        run_controller();
+        perceive();
+      }
+    }
 
     // a plan into cells never seen: look around once the robot has moved on
     int ix, iy;
