@@ -135,6 +135,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
                             std::abs(s.floor[other] - s.floor[cell]) <= gate;
         }
       }
+      // (heights without a sigma keep variance 0 and so are never doubted)
       if (!confirmed_near) s.floor_var[cell] *= 2;
     }
   }

@@ -70,6 +70,10 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
                   int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G, LocalizationState* state) {
   Pose2 pose = pose_G;
   Eigen::MatrixXd& P = state->covariance;
+  // planes of this view match only landmarks from earlier views, each at most once (pieces of
+  // one wall in one view are not independent measurements)
+  const size_t landmarks_before = state->landmarks.size();
+  std::vector<bool> used(landmarks_before, false);
   for (const Plane& plane : planes_C) {
     LineObservation line;
     if (!ObserveLine(params, plane, image_pixels, X_RC, &line)) continue;
@@ -90,6 +94,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, n_state), J_i = J;
     for (size_t i = 0; i < state->landmarks.size(); ++i) {
       const WallLandmark& landmark = state->landmarks[i];
+      const bool matchable = i < landmarks_before && !used[i];
       const Eigen::Vector2d n = Normal(landmark.angle), t(-n.y(), n.x());
       const Eigen::Vector2d e(WrapAngle(g.angle - landmark.angle), n.dot(g.centroid_G) - landmark.offset);
       if (std::abs(e.x()) < params.near_angle && std::abs(e.y()) < params.near_offset) near_one = true;
@@ -103,7 +108,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
       J_i(1, k) = t.dot(g.centroid_G);
       J_i(1, k + 1) = -1;
       const Eigen::Matrix2d S = J_i * P * J_i.transpose() + R;
-      if (e.dot(S.inverse() * e) > params.gate * params.gate) continue;
+      if (!matchable || e.dot(S.inverse() * e) > params.gate * params.gate) continue;
       ++gated;
       matched = int(i);
       error = e;
@@ -143,6 +148,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     const Eigen::MatrixXd I_KJ = Eigen::MatrixXd::Identity(n_state, n_state) - K * J;
     P = I_KJ * P * I_KJ.transpose() + K * R * K.transpose();
     ++state->landmarks[size_t(matched)].matches;
+    used[size_t(matched)] = true;
   }
   return pose;
 }

@@ -68,7 +68,9 @@ void PredictPose(const Pose2& before, const Pose2& after, const Eigen::Matrix3d&
 // pixels) as seen from the robot: X_RC is the camera in the robot frame (kinematics). Returns the corrected pose in the grid frame given the
 // odometry pose `pose_G`: each vertical plane that matches exactly one landmark within the gate
 // updates pose, landmarks and covariance; one that matches none and lies near none becomes a
-// new landmark; one that matches several is ambiguous and unused.
+// new landmark; one that matches several is ambiguous and unused. Within one call a landmark
+// is matched at most once and landmarks it adds are not matched (pieces of one wall in one view
+// are not independent measurements).
 Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& planes_C,
                   int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G, LocalizationState* state);
 

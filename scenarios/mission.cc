@@ -178,6 +178,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     timing["render"].push_back(Ms(start));
     last_view = PerceiveView(perception_params, scenario.sensor.depth, last_stereo, humanoid,
                              robot_G, X_GC, body_G, &maps, &localization);
+    timing["stereo"].push_back(last_view.stereo_ms);
+    timing["segmentation"].push_back(last_view.segmentation_ms);
+    timing["mapping"].push_back(last_view.mapping_ms);
     const perception::Pose2& localized = last_view.robot_G;
     controller.CorrectBelievedPose({localized.x, localized.y, localized.yaw});
   };

@@ -169,9 +169,21 @@ TEST(FloorMap, ALowerFloorSeenAgainAndAgainReplacesAHeightNothingConfirms) {
     UpdateMaps(params, Frame(kSide, Patch(0.0f, 0.0f, 0.002f)), &state);
     ++frames;
   }
-  // equally precise: doubted twice (variance x4), then replaced as eq. (21) allows
+  // equally precise: doubted twice (variance x4), then replaced as eq. (21) allows (the
+  // variances are powers of two times the same value, so the comparison is exact)
   EXPECT_EQ(frames, 3);
   EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+}
+
+// Lower floor points only at a cell's side (the foot of a step edge) do not doubt its height.
+TEST(FloorMap, ALowerFloorAtTheSideOfACellDoesNotDoubtIt) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.018f, 0.018f, 0.002f)), &state);
+  std::vector<LabelledPoint> side;
+  for (float y : {0.012f, 0.02f, 0.028f}) side.push_back({{0.402f, y, 0.0f}, 0.0f, 0.002f});
+  for (int i = 0; i < 5; ++i) UpdateMaps(params, Frame(kSide, side), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.018, 1e-6);
 }
 
 // The higher floor of a step edge cell stays while the same views confirm it along the edge.

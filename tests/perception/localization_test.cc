@@ -77,6 +77,25 @@ TEST(Localization, NoiseFreeOdometryRecordsWallsButNeverMovesThePose) {
   pose = CorrectPose({}, CorridorSeenFrom(moved), kPixels, CameraInRobot(), believed, &state);
   EXPECT_EQ(pose.y, 0.03);
   EXPECT_EQ(pose.yaw, 0);
+  // the walls were matched (not added again), and only the landmarks moved
+  ASSERT_EQ(state.landmarks.size(), 3u);
+  for (const WallLandmark& landmark : state.landmarks) EXPECT_EQ(landmark.matches, 1);
+  EXPECT_EQ(state.PoseCovariance().norm(), 0);
+}
+
+TEST(Localization, PiecesOfOneWallInOneViewCountOnce) {
+  LocalizationState state;
+  const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
+  // the left wall seen as two planes: one landmark, not matched by its own second piece
+  CorrectPose({}, {SeenPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC), SeenPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
+              kPixels, CameraInRobot(), {}, &state);
+  ASSERT_EQ(state.landmarks.size(), 1u);
+  EXPECT_EQ(state.landmarks[0].matches, 0);
+  // the next view's two pieces update it once
+  PredictPose({}, {}, Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal(), &state);
+  CorrectPose({}, {SeenPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC), SeenPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
+              kPixels, CameraInRobot(), {}, &state);
+  EXPECT_EQ(state.landmarks[0].matches, 1);
 }
 
 TEST(Localization, WallsSeenBeforeCorrectADriftedPose) {
