@@ -86,29 +86,30 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     const Eigen::Index n_state = P.rows();
 
     // for each landmark: the error e = (angle difference, distance of the centroid from its
-    // line), zero if pose and landmark are right, and e's Jacobian J over the state; the line
-    // must gate exactly one landmark
+    // line), zero if pose and landmark are right, and e's Jacobian over the state, which is
+    // nonzero only in the pose's 3 and the landmark's 2 columns; the line must gate exactly
+    // one landmark
     int matched = -1, gated = 0;
     bool near_one = false;
     Eigen::Vector2d error;
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(2, n_state), J_i = J;
+    Eigen::Matrix<double, 2, 5> J;  // over (x, y, yaw, angle_L, offset_L) of the match
     for (size_t i = 0; i < state->landmarks.size(); ++i) {
       const WallLandmark& landmark = state->landmarks[i];
-      const bool matchable = i < landmarks_before && !used[i];
       const Eigen::Vector2d n = Normal(landmark.angle), t(-n.y(), n.x());
       const Eigen::Vector2d e(WrapAngle(g.angle - landmark.angle), n.dot(g.centroid_G) - landmark.offset);
       if (std::abs(e.x()) < params.near_angle && std::abs(e.y()) < params.near_offset) near_one = true;
+      if (i >= landmarks_before || used[i]) continue;
       const Eigen::Index k = 3 + 2 * Eigen::Index(i);
-      J_i.setZero();
-      J_i(0, 2) = 1;
-      J_i(0, k) = -1;
-      J_i(1, 0) = n.x();
-      J_i(1, 1) = n.y();
-      J_i(1, 2) = n.dot(perp_arm);
-      J_i(1, k) = t.dot(g.centroid_G);
-      J_i(1, k + 1) = -1;
-      const Eigen::Matrix2d S = J_i * P * J_i.transpose() + R;
-      if (!matchable || e.dot(S.inverse() * e) > params.gate * params.gate) continue;
+      Eigen::Matrix<double, 2, 5> J_i;
+      J_i << 0, 0, 1, -1, 0,                                            // angle
+          n.x(), n.y(), n.dot(perp_arm), t.dot(g.centroid_G), -1;       // offset
+      Eigen::Matrix<double, 5, 5> P_i;
+      const Eigen::Index idx[5] = {0, 1, 2, k, k + 1};
+      for (int r = 0; r < 5; ++r) {
+        for (int c = 0; c < 5; ++c) P_i(r, c) = P(idx[r], idx[c]);
+      }
+      const Eigen::Matrix2d S = J_i * P_i * J_i.transpose() + R;
+      if (e.dot(S.inverse() * e) > params.gate * params.gate) continue;
       ++gated;
       matched = int(i);
       error = e;
@@ -133,10 +134,16 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     }
     if (gated != 1) continue;
 
-    // the Kalman update of pose and landmarks (Joseph form); noise-free odometry leaves the
-    // pose alone (its rows of the covariance stay zero) and refines only the landmarks
-    const Eigen::Matrix2d S = J * P * J.transpose() + R;
-    const Eigen::MatrixXd K = P * J.transpose() * S.inverse();
+    // the Kalman update of pose and landmarks, in O(state^2): P J^T from the five columns J
+    // touches, K = P J^T S^-1, P -= K (P J^T)^T; noise-free odometry leaves the pose alone
+    // (its rows of the covariance stay zero) and refines only the landmarks
+    const Eigen::Index k = 3 + 2 * Eigen::Index(matched);
+    const Eigen::Index idx[5] = {0, 1, 2, k, k + 1};
+    Eigen::MatrixXd PJt = Eigen::MatrixXd::Zero(n_state, 2);
+    for (int c = 0; c < 5; ++c) PJt += P.col(idx[c]) * J.col(c).transpose();
+    Eigen::Matrix2d S = R;
+    for (int c = 0; c < 5; ++c) S += J.col(c) * PJt.row(idx[c]);
+    const Eigen::MatrixXd K = PJt * S.inverse();
     const Eigen::VectorXd delta = -K * error;
     pose.x += delta(0);
     pose.y += delta(1);
@@ -145,8 +152,8 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
       state->landmarks[i].angle = WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
       state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
     }
-    const Eigen::MatrixXd I_KJ = Eigen::MatrixXd::Identity(n_state, n_state) - K * J;
-    P = I_KJ * P * I_KJ.transpose() + K * R * K.transpose();
+    P.noalias() -= K * PJt.transpose();
+    P = 0.5 * (P + P.transpose()).eval();
     ++state->landmarks[size_t(matched)].matches;
     used[size_t(matched)] = true;
   }
