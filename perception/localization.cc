@@ -1,6 +1,7 @@
 #include "perception/localization.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace fognav::perception {
@@ -10,10 +11,10 @@ double WrapAngle(double a) { return std::remainder(a, 2 * M_PI); }
 
 // A vertical plane as a line on the floor, robot frame.
 struct LineObservation {
-  double angle = 0;                               // of its normal
+  double angle = 0;  // of its normal
   Eigen::Vector2d centroid_R = Eigen::Vector2d::Zero();
-  double half_length = 0;                         // along the line, metres
-  double range = 0;                               // camera to centroid, metres
+  double half_length = 0;  // along the line, metres
+  double range = 0;        // camera to centroid, metres
 };
 
 bool ObserveLine(const LocalizationParams& params, const Plane& plane_C, int image_pixels,
@@ -48,10 +49,16 @@ GridLine ToGrid(const LineObservation& line, const Pose2& pose) {
 
 Eigen::Vector2d Normal(double angle) { return {std::cos(angle), std::sin(angle)}; }
 
+// The state's columns an observation of landmark i depends on: the pose's and the landmark's.
+std::array<Eigen::Index, 5> StateColumns(size_t i) {
+  const Eigen::Index k = 3 + 2 * Eigen::Index(i);
+  return {0, 1, 2, k, k + 1};
+}
+
 }  // namespace
 
-void PredictPose(const Pose2& before, const Pose2& after, const Eigen::Matrix3d& increment_covariance,
-                 LocalizationState* state) {
+void PredictPose(const Pose2& before, const Pose2& after,
+                 const Eigen::Matrix3d& increment_covariance, LocalizationState* state) {
   // pose' = pose (+) increment: the Jacobians with respect to the pose and the increment
   Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
   F(0, 2) = -(after.y - before.y);
@@ -60,14 +67,15 @@ void PredictPose(const Pose2& before, const Pose2& after, const Eigen::Matrix3d&
   G.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(before.yaw).toRotationMatrix();
   Eigen::MatrixXd& P = state->covariance;
   const Eigen::Index n = P.rows();
-  P.topLeftCorner<3, 3>() = F * P.topLeftCorner<3, 3>() * F.transpose() +
-                            G * increment_covariance * G.transpose();
+  P.topLeftCorner<3, 3>() =
+      F * P.topLeftCorner<3, 3>() * F.transpose() + G * increment_covariance * G.transpose();
   P.topRightCorner(3, n - 3) = F * P.topRightCorner(3, n - 3);
   P.bottomLeftCorner(n - 3, 3) = P.topRightCorner(3, n - 3).transpose();
 }
 
 Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& planes_C,
-                  int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G, LocalizationState* state) {
+                  int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G,
+                  LocalizationState* state) {
   Pose2 pose = pose_G;
   Eigen::MatrixXd& P = state->covariance;
   // planes of this view match only landmarks from earlier views, each at most once (pieces of
@@ -78,9 +86,11 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     LineObservation line;
     if (!ObserveLine(params, plane, image_pixels, X_RC, &line)) continue;
     const GridLine g = ToGrid(line, pose);
-    const double offset_sigma = params.offset_sigma + params.offset_sigma_per_m2 * line.range * line.range;
+    const double offset_sigma =
+        params.offset_sigma + params.offset_sigma_per_m2 * line.range * line.range;
     const Eigen::Matrix2d R =
-        Eigen::Vector2d(params.angle_sigma * params.angle_sigma, offset_sigma * offset_sigma).asDiagonal();
+        Eigen::Vector2d(params.angle_sigma * params.angle_sigma, offset_sigma * offset_sigma)
+            .asDiagonal();
     const Eigen::Vector2d arm_G = g.centroid_G - Eigen::Vector2d(pose.x, pose.y);
     const Eigen::Vector2d perp_arm(-arm_G.y(), arm_G.x());
     const Eigen::Index n_state = P.rows();
@@ -96,15 +106,15 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     for (size_t i = 0; i < state->landmarks.size(); ++i) {
       const WallLandmark& landmark = state->landmarks[i];
       const Eigen::Vector2d n = Normal(landmark.angle), t(-n.y(), n.x());
-      const Eigen::Vector2d e(WrapAngle(g.angle - landmark.angle), n.dot(g.centroid_G) - landmark.offset);
-      if (std::abs(e.x()) < params.near_angle && std::abs(e.y()) < params.near_offset) near_one = true;
+      const Eigen::Vector2d e(WrapAngle(g.angle - landmark.angle),
+                              n.dot(g.centroid_G) - landmark.offset);
+      near_one |= std::abs(e.x()) < params.near_angle && std::abs(e.y()) < params.near_offset;
       if (i >= landmarks_before || used[i]) continue;
-      const Eigen::Index k = 3 + 2 * Eigen::Index(i);
       Eigen::Matrix<double, 2, 5> J_i;
-      J_i << 0, 0, 1, -1, 0,                                            // angle
-          n.x(), n.y(), n.dot(perp_arm), t.dot(g.centroid_G), -1;       // offset
+      J_i << 0, 0, 1, -1, 0,                                       // angle
+          n.x(), n.y(), n.dot(perp_arm), t.dot(g.centroid_G), -1;  // offset
       Eigen::Matrix<double, 5, 5> P_i;
-      const Eigen::Index idx[5] = {0, 1, 2, k, k + 1};
+      const std::array<Eigen::Index, 5> idx = StateColumns(i);
       for (int r = 0; r < 5; ++r) {
         for (int c = 0; c < 5; ++c) P_i(r, c) = P(idx[r], idx[c]);
       }
@@ -126,8 +136,8 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
       Eigen::Matrix2d G_obs;
       G_obs << 1, 0, t.dot(g.centroid_G), 1;
       P.conservativeResize(n_state + 2, n_state + 2);
-      P.bottomRightCorner<2, 2>() = G_pose * P.topLeftCorner<3, 3>() * G_pose.transpose() +
-                                    G_obs * R * G_obs.transpose();
+      P.bottomRightCorner<2, 2>() =
+          G_pose * P.topLeftCorner<3, 3>() * G_pose.transpose() + G_obs * R * G_obs.transpose();
       P.block(n_state, 0, 2, n_state) = G_pose * P.topLeftCorner(3, n_state);
       P.block(0, n_state, n_state, 2) = P.block(n_state, 0, 2, n_state).transpose();
       continue;
@@ -137,8 +147,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     // the Kalman update of pose and landmarks, in O(state^2): P J^T from the five columns J
     // touches, K = P J^T S^-1, P -= K (P J^T)^T; noise-free odometry leaves the pose alone
     // (its rows of the covariance stay zero) and refines only the landmarks
-    const Eigen::Index k = 3 + 2 * Eigen::Index(matched);
-    const Eigen::Index idx[5] = {0, 1, 2, k, k + 1};
+    const std::array<Eigen::Index, 5> idx = StateColumns(size_t(matched));
     Eigen::MatrixXd PJt = Eigen::MatrixXd::Zero(n_state, 2);
     for (int c = 0; c < 5; ++c) PJt += P.col(idx[c]) * J.col(c).transpose();
     Eigen::Matrix2d S = R;
@@ -149,7 +158,8 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     pose.y += delta(1);
     pose.yaw = WrapAngle(pose.yaw + delta(2));
     for (size_t i = 0; i < state->landmarks.size(); ++i) {
-      state->landmarks[i].angle = WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
+      state->landmarks[i].angle =
+          WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
       state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
     }
     P.noalias() -= K * PJt.transpose();

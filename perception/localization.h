@@ -26,20 +26,20 @@ struct LocalizationParams {
   // which planes are walls: on the suite's noise-free stereo views these limits keep 210 of
   // 637 vertical planes, all within 2.2 deg and 3 cm of their true face (the others include
   // planes off by up to 20 deg: merged corners, leg slivers, spurious matches)
-  double max_normal_z = 0.1;        // |n_z| of a plane that counts as vertical
-  double min_image_fraction = 0.03; // fewest points, as a fraction of the image's pixels
-  double max_rms = 0.01;            // largest RMS residual of its points, metres
-  double min_length = 0.3;          // shortest horizontal extent, metres
-  double max_range = 2.5;           // farthest plane centroid used, metres from the camera
+  double max_normal_z = 0.1;         // |n_z| of a plane that counts as vertical
+  double min_image_fraction = 0.03;  // fewest points, as a fraction of the image's pixels
+  double max_rms = 0.01;             // largest RMS residual of its points, metres
+  double min_length = 0.3;           // shortest horizontal extent, metres
+  double max_range = 2.5;            // farthest plane centroid used, metres from the camera
   // measurement noise of a plane's line: angle, and offset growing with range r as stereo does
-  double angle_sigma = 0.02;            // rad
-  double offset_sigma = 0.01;           // metres at r = 0
-  double offset_sigma_per_m2 = 0.004;   // metres per square metre of range
-  double gate = 3.0;              // Mahalanobis distance within which a plane matches a landmark
+  double angle_sigma = 0.02;           // rad
+  double offset_sigma = 0.01;          // metres at r = 0
+  double offset_sigma_per_m2 = 0.004;  // metres per square metre of range
+  double gate = 3.0;  // Mahalanobis distance within which a plane matches a landmark
   // a plane that no landmark gates but that lies this near one is ambiguous and not added
-  double near_angle = 0.2;        // rad
-  double near_offset = 0.15;      // metres
-  int max_landmarks = 200;        // no more are added beyond this (the state grows with them)
+  double near_angle = 0.2;    // rad
+  double near_offset = 0.15;  // metres
+  int max_landmarks = 200;    // no more are added beyond this (the state grows with them)
 };
 
 // The line on the floor of a vertical plane, grid frame.
@@ -61,18 +61,20 @@ struct LocalizationState {
 
 // Propagates the covariance over one odometry increment from `before` to `after` (grid frame)
 // whose own covariance in the robot frame of `before` is `increment_covariance`.
-void PredictPose(const Pose2& before, const Pose2& after, const Eigen::Matrix3d& increment_covariance,
-                 LocalizationState* state);
+void PredictPose(const Pose2& before, const Pose2& after,
+                 const Eigen::Matrix3d& increment_covariance, LocalizationState* state);
 
 // The vertical planes of `planes_C` (camera frame, segmented from an image of `image_pixels`
-// pixels) as seen from the robot: X_RC is the camera in the robot frame (kinematics). Returns the corrected pose in the grid frame given the
-// odometry pose `pose_G`: each vertical plane that matches exactly one landmark within the gate
+// pixels) as seen from the robot: X_RC is the camera in the robot frame (kinematics). Returns
+// the corrected pose in the grid frame given the odometry pose `pose_G`: each vertical plane
+// that matches exactly one landmark within the gate
 // updates pose, landmarks and covariance; one that matches none and lies near none becomes a
 // new landmark; one that matches several is ambiguous and unused. Within one call a landmark
 // is matched at most once and landmarks it adds are not matched (pieces of one wall in one view
 // are not independent measurements).
 Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& planes_C,
-                  int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G, LocalizationState* state);
+                  int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G,
+                  LocalizationState* state);
 
 }  // namespace fognav::perception
 

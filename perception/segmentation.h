@@ -228,6 +228,9 @@ StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_
 // pixel sums.
 SegmentationScore CombineScores(const std::vector<SegmentationScore>& scores);
 
+// The median of a list, the mean of the middle two for an even count; 0 if empty.
+double Median(std::vector<double> values);
+
 // Pools range scores of several views: pixels add, the shares are weighted by pixels, the
 // errors are the median of the views' medians (views without a valid point left out).
 StereoScore CombineStereoScores(const std::vector<StereoScore>& scores);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "perception/segmentation.h"
@@ -26,14 +27,6 @@ class IdMap {
   std::unordered_map<int32_t, int> map_;
   std::vector<int32_t> ids_;
 };
-
-// The median of a non-empty list, the mean of the middle two for an even count (reorders it).
-double Median(std::vector<double>* v) {
-  auto mid = v->begin() + v->size() / 2;
-  std::nth_element(v->begin(), mid, v->end());
-  if (v->size() % 2) return *mid;
-  return 0.5 * (*mid + *std::max_element(v->begin(), mid));
-}
 
 void Ratios(SegmentationScore* s) {
   s->accuracy = s->segment_px > 0 ? double(s->overlap_px) / double(s->segment_px) : 0.0;
@@ -206,8 +199,8 @@ StereoScore ScoreStereo(const PointImage& points, const DepthImage& truth_depth_
   if (!disparity_errors.empty()) {
     score.valid = double(disparity_errors.size()) / double(score.pixels);
     score.bad_1px = double(bad) / double(disparity_errors.size());
-    score.median_error_px = Median(&disparity_errors);
-    score.median_depth_error = Median(&depth_errors);
+    score.median_error_px = Median(std::move(disparity_errors));
+    score.median_depth_error = Median(std::move(depth_errors));
   }
   return score;
 }
@@ -227,11 +220,17 @@ StereoScore CombineStereoScores(const std::vector<StereoScore>& scores) {
   }
   total.valid = total.pixels > 0 ? valid_px / double(total.pixels) : 0;
   total.bad_1px = valid_px > 0 ? bad_px / valid_px : 0;
-  if (!error_px.empty()) {
-    total.median_error_px = Median(&error_px);
-    total.median_depth_error = Median(&error_m);
-  }
+  total.median_error_px = Median(std::move(error_px));
+  total.median_depth_error = Median(std::move(error_m));
   return total;
+}
+
+double Median(std::vector<double> values) {
+  if (values.empty()) return 0;
+  auto mid = values.begin() + values.size() / 2;
+  std::nth_element(values.begin(), mid, values.end());
+  if (values.size() % 2) return *mid;
+  return 0.5 * (*mid + *std::max_element(values.begin(), mid));
 }
 
 }  // namespace fognav::perception

@@ -69,6 +69,12 @@ struct Pose2 {
   double x = 0, y = 0, yaw = 0;
 };
 
+// The planar pose as a rigid transform, its origin lifted to height z (metres).
+inline Eigen::Isometry3d Planar(const Pose2& p, double z = 0) {
+  return Eigen::Isometry3d(Eigen::Translation3d(p.x, p.y, z) *
+                           Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()));
+}
+
 // A solid box: pose of its centre in some frame F (named where it is used) and half extents
 // along its own axes in metres. World objects and the robot's body parts are given as these.
 struct OrientedBox {

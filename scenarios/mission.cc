@@ -37,10 +37,6 @@ Eigen::Vector3d Relative(const perception::Pose2& from, const perception::Pose2&
   return {c * dx + s * dy, -s * dx + c * dy, WrapAngle(to.yaw - from.yaw)};
 }
 
-Eigen::Isometry3d Planar(const perception::Pose2& p, double z) {
-  return Eigen::Translation3d(p.x, p.y, z) * Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ());
-}
-
 perception::Pose2 ToPerception(const sim::Pose2& p) { return {p.x, p.y, p.yaw}; }
 
 // how far one motion command may carry the robot before it re-plans (about two strides)
@@ -165,19 +161,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   // one perception cycle at the head's current pose
   ViewResult last_view;
   auto perceive = [&]() {
-    const perception::Pose2 robot_G = ToPerception(controller.believed_pose());
-    const Eigen::Isometry3d X_GR = Planar(robot_G, believed_floor_z);
-    const Eigen::Isometry3d X_GC = X_GR * sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft);
-    std::vector<perception::OrientedBox> body_G;
-    for (const sim::RobotBox& box : sim::RobotBodyBoxes(humanoid, m, d)) {
-      body_G.push_back({X_GR * box.X_RB, box.half_size});
-    }
     auto start = Clock::now();
     last_stereo = RenderStereo(&renderer, world, sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft),
                                scenario.sensor);
     timing["render"].push_back(Ms(start));
     last_view = PerceiveView(perception_params, scenario.sensor.depth, last_stereo, humanoid,
-                             robot_G, X_GC, body_G, &maps, &localization);
+                             ToPerception(controller.believed_pose()), believed_floor_z,
+                             sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft),
+                             sim::RobotBodyBoxes(humanoid, m, d), &maps, &localization);
     timing["stereo"].push_back(last_view.stereo_ms);
     timing["segmentation"].push_back(last_view.segmentation_ms);
     timing["mapping"].push_back(last_view.mapping_ms);
@@ -376,7 +367,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   const bool reached_goal = goal_distance <= scenario.goal_tolerance;
   const perception::Pose2 believed = ToPerception(controller.believed_pose());
   const perception::Pose2 truth_pose = ToPerception(controller.TruePose(d));
-  const Eigen::Isometry3d X_GW = Planar(believed, 0) * Planar(truth_pose, 0).inverse();
+  const Eigen::Isometry3d X_GW = perception::Planar(believed) * perception::Planar(truth_pose).inverse();
   fog = perception::ComputeFog(perception_params.map, maps);
   const perception::Fog truth_fog = TruthFog(scenario, fog.window, perception_params.map.fog, X_GW);
   const perception::FogScore fog_score = perception::ScoreFog(fog, truth_fog);
@@ -426,7 +417,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   }
   nlohmann::json timing_ms = nlohmann::json::object();
   for (const char* stage : {"render", "stereo", "segmentation", "mapping", "planning", "control"}) {
-    timing_ms[stage] = Median(timing[stage]);
+    timing_ms[stage] = perception::Median(timing[stage]);
   }
   nlohmann::json report = {
       {"scenario", scenario.name},

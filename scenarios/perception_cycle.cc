@@ -41,14 +41,6 @@ void MakeDirectory(const std::string& dir) {
 
 }  // namespace
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0;
-  auto mid = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), mid, values.end());
-  if (values.size() % 2) return *mid;
-  return 0.5 * (*mid + *std::max_element(values.begin(), mid));
-}
-
 std::vector<sim::HeadAngles> StartSweep() {
   sim::LookAroundParams params;
   params.tilts.push_back(0.15);
@@ -66,9 +58,9 @@ perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
 
 ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
                         const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
-                        const Eigen::Isometry3d& X_GC,
-                        const std::vector<perception::OrientedBox>& body_G,
-                        perception::MapState* maps, perception::LocalizationState* localization) {
+                        double floor_z, const Eigen::Isometry3d& X_RC,
+                        const std::vector<sim::RobotBox>& body_R, perception::MapState* maps,
+                        perception::LocalizationState* localization) {
   ViewResult result;
   result.robot_G = robot_G;
   // range data: stereo matching of the pair, or the depth buffer
@@ -98,30 +90,23 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   result.segmentation_ms = MillisecondsSince(start);
   result.segmentation = perception::ScoreSegmentation(result.planes.labels, truth, truth_depth);
 
-  // the pose, corrected by the walls seen before; the camera and body move with it
-  Eigen::Isometry3d X_GC_used = X_GC;
-  std::vector<perception::OrientedBox> body_G_used = body_G;
+  // the pose, corrected by the walls seen before; the camera and the body go with it
   if (localization != nullptr) {
-    auto planar = [](const perception::Pose2& p) {
-      return Eigen::Isometry3d(Eigen::Translation3d(p.x, p.y, 0) *
-                               Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()));
-    };
-    const Eigen::Isometry3d X_RC = planar(robot_G).inverse() * X_GC;
     result.robot_G = perception::CorrectPose(params.localization, result.planes.planes,
                                              result.points.width * result.points.height, X_RC,
                                              robot_G, localization);
-    const Eigen::Isometry3d X_new_old = planar(result.robot_G) * planar(robot_G).inverse();
-    X_GC_used = X_new_old * X_GC;
-    for (perception::OrientedBox& box : body_G_used) box.X_FB = X_new_old * box.X_FB;
   }
+  const Eigen::Isometry3d X_GR = perception::Planar(result.robot_G, floor_z);
+  const Eigen::Isometry3d X_GC = X_GR * X_RC;
+  std::vector<perception::OrientedBox> body_G;
+  for (const sim::RobotBox& box : body_R) body_G.push_back({X_GR * box.X_RB, box.half_size});
 
   // maps
   start = Clock::now();
   perception::MapInput input;
   input.robot_G = result.robot_G;
-  input.p_GC = X_GC_used.translation();
-  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC_used,
-                                         body_G_used);
+  input.p_GC = X_GC.translation();
+  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G);
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);
   return result;
@@ -177,18 +162,12 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
     // the robot believes where odometry says; the camera and body from its joint angles
     const sim::Pose2 believed = controller.believed_pose();
     const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
-    Eigen::Isometry3d X_GR = Eigen::Translation3d(believed.x, believed.y, 0) *
-                             Eigen::AngleAxisd(believed.yaw, Eigen::Vector3d::UnitZ());
-    Eigen::Isometry3d X_GC = X_GR * sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft);
-    std::vector<perception::OrientedBox> body_G;
-    for (const sim::RobotBox& box : sim::RobotBodyBoxes(humanoid, m, d)) {
-      body_G.push_back({X_GR * box.X_RB, box.half_size});
-    }
     StereoView view = RenderStereo(&renderer, world,
                                    sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft),
                                    scenario.sensor);
-    ViewResult result = PerceiveView(params, scenario.sensor.depth, view, humanoid, robot_G,
-                                     X_GC, body_G, &maps);
+    ViewResult result = PerceiveView(params, scenario.sensor.depth, view, humanoid, robot_G, 0.0,
+                                     sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft),
+                                     sim::RobotBodyBoxes(humanoid, m, d), &maps);
     char prefix[32];
     std::snprintf(prefix, sizeof(prefix), "view%02zu", i);
     WriteViewFrames(view, result, out_dir + "/frames", prefix);
@@ -264,9 +243,9 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
         {"length", plan.length},
         {"runs", plan_moves}}},
       {"timing_ms",
-       {{"stereo", Median(stereo_ms)},
-        {"segmentation", Median(segmentation_ms)},
-        {"mapping", Median(mapping_ms)}}}};
+       {{"stereo", perception::Median(stereo_ms)},
+        {"segmentation", perception::Median(segmentation_ms)},
+        {"mapping", perception::Median(mapping_ms)}}}};
   std::string text = report.dump(2);
   std::ofstream file(out_dir + "/perception.json");
   file << text << "\n";

@@ -58,15 +58,15 @@ std::vector<sim::HeadAngles> StartSweep();
 perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
                                      const sim::Humanoid& humanoid);
 
-// Perceives one stereo view and updates the maps. X_GC is the left camera in the grid frame
-// and body_G the robot's body boxes in the grid frame, both from odometry and kinematics. With
-// `localization` the view's vertical planes first correct robot_G (CorrectPose), and the maps
-// are updated with the corrected pose, which the result returns.
+// Perceives one stereo view and updates the maps. The robot stands at robot_G (odometry, grid
+// frame) on a floor floor_z high; X_RC is the left camera and body_R the robot's body boxes in
+// the robot frame (kinematics). With `localization` the view's vertical planes first correct
+// robot_G (CorrectPose), and the maps are updated with the corrected pose, which the result
+// returns.
 ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
                         const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
-                        const Eigen::Isometry3d& X_GC,
-                        const std::vector<perception::OrientedBox>& body_G,
-                        perception::MapState* maps,
+                        double floor_z, const Eigen::Isometry3d& X_RC,
+                        const std::vector<sim::RobotBox>& body_R, perception::MapState* maps,
                         perception::LocalizationState* localization = nullptr);
 
 // The ground-truth FOG of the scenario's world in the window; the grid frame is the world frame
@@ -78,9 +78,6 @@ perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow&
 // Writes frames/<prefix>_left.png, _disparity.png (if any) and _segments.png into dir.
 void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
                      const std::string& prefix);
-
-// Median of a list (0 if empty).
-double Median(std::vector<double> values);
 
 // `fognav perceive`: keeps the robot at its start pose, runs the look-around head sweep,
 // perceives every view and writes DIR/perception.json, DIR/frames/ and DIR/maps/.

@@ -32,6 +32,28 @@ Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& targ
   return X_WC;
 }
 
+Plane WallPlane(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height,
+                const Eigen::Isometry3d& X_WC) {
+  Plane plane;
+  const Eigen::Isometry3d X_CW = X_WC.inverse();
+  for (int i = 0; i <= 60; ++i) {
+    for (int k = 0; k <= 20; ++k) {
+      const Eigen::Vector2d q = a + (b - a) * (i / 60.0);
+      const Eigen::Vector3d p_C = X_CW * Eigen::Vector3d(q.x(), q.y(), height * k / 20.0);
+      ++plane.num_points;
+      plane.b += p_C;
+      plane.A += p_C * p_C.transpose();
+    }
+  }
+  const Eigen::Vector2d along = (b - a).normalized();
+  Eigen::Vector3d n_W(-along.y(), along.x(), 0);
+  const Eigen::Vector3d c_W = X_WC * plane.Centroid();
+  if (n_W.dot(X_WC.translation() - c_W) < 0) n_W = -n_W;  // towards the camera
+  plane.n = X_WC.linear().transpose() * n_W;
+  plane.d = plane.n.dot(plane.Centroid());
+  return plane;
+}
+
 SyntheticFrame RenderBoxes(const std::vector<OrientedBox>& solids_W, const Eigen::Isometry3d& X_WC,
                            const CameraIntrinsics& K, double max_range) {
   SyntheticFrame frame;

@@ -28,6 +28,12 @@ struct SyntheticFrame {
 SyntheticFrame RenderBoxes(const std::vector<OrientedBox>& solids_W, const Eigen::Isometry3d& X_WC,
                            const CameraIntrinsics& K, double max_range = 10.0);
 
+// The plane a perfect segmentation gives of the vertical rectangle from floor point a to b
+// (world x, y), 0 to `height` high, seen by a camera at X_WC: the moments of a 61 x 21 grid of
+// its points in the camera frame, the normal towards the camera.
+Plane WallPlane(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height,
+                const Eigen::Isometry3d& X_WC);
+
 // A box with footprint [x0, x1] x [y0, y1] from z0 to z1, axis-aligned in the world.
 OrientedBox AlignedBox(double x0, double x1, double y0, double y1, double z0, double z1);
 

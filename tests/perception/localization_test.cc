@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "perception/internal/map_synthetic.h"
 #include "perception/localization.h"
 
 namespace fognav::perception {
@@ -13,52 +14,15 @@ constexpr double kDeg = M_PI / 180;
 constexpr int kPixels = 176 * 144;
 
 // The head camera 0.5 m above the floor, looking along the robot's x (OpenCV axes).
-Eigen::Isometry3d CameraInRobot() {
-  Eigen::Matrix3d R_RC;
-  R_RC.col(0) = -Eigen::Vector3d::UnitY();  // camera x: right
-  R_RC.col(1) = -Eigen::Vector3d::UnitZ();  // camera y: down
-  R_RC.col(2) = Eigen::Vector3d::UnitX();   // camera z: forward
-  Eigen::Isometry3d X_RC = Eigen::Isometry3d::Identity();
-  X_RC.linear() = R_RC;
-  X_RC.translation() = Eigen::Vector3d(0, 0, 0.5);
-  return X_RC;
-}
-
-Eigen::Isometry3d Planar(const Pose2& p) {
-  return Eigen::Isometry3d(Eigen::Translation3d(p.x, p.y, 0) *
-                           Eigen::AngleAxisd(p.yaw, Eigen::Vector3d::UnitZ()));
-}
-
-// The plane of the world rectangle from a to b (floor corners), 0 to `height` high, as the
-// segmentation would give it to a camera at X_WC: moments of a grid of its points.
-Plane SeenPlane(const Eigen::Vector2d& a, const Eigen::Vector2d& b, double height,
-                const Eigen::Isometry3d& X_WC) {
-  Plane plane;
-  const Eigen::Isometry3d X_CW = X_WC.inverse();
-  for (int i = 0; i <= 60; ++i) {
-    for (int k = 0; k <= 20; ++k) {
-      const Eigen::Vector2d q = a + (b - a) * (i / 60.0);
-      const Eigen::Vector3d p_C = X_CW * Eigen::Vector3d(q.x(), q.y(), height * k / 20.0);
-      ++plane.num_points;
-      plane.b += p_C;
-      plane.A += p_C * p_C.transpose();
-    }
-  }
-  const Eigen::Vector2d along = (b - a).normalized();
-  Eigen::Vector3d n_W(-along.y(), along.x(), 0);
-  const Eigen::Vector3d c_W = X_WC * plane.Centroid();
-  if (n_W.dot(X_WC.translation() - c_W) < 0) n_W = -n_W;  // towards the camera
-  plane.n = X_WC.linear().transpose() * n_W;
-  plane.d = plane.n.dot(plane.Centroid());
-  return plane;
-}
+Eigen::Isometry3d CameraInRobot() { return internal::LookAt({0, 0, 0.5}, {1, 0, 0.5}); }
 
 // A corridor 1.2 m wide along x with a wall across it at x = 2.2.
 std::vector<Plane> CorridorSeenFrom(const Pose2& robot_W) {
   const Eigen::Isometry3d X_WC = Planar(robot_W) * CameraInRobot();
   const double x0 = robot_W.x + 1.0, x1 = robot_W.x + 2.0;
-  return {SeenPlane({x0, 0.6}, {x1, 0.6}, 0.3, X_WC), SeenPlane({x0, -0.6}, {x1, -0.6}, 0.3, X_WC),
-          SeenPlane({2.2, -0.5}, {2.2, 0.5}, 0.3, X_WC)};
+  return {internal::WallPlane({x0, 0.6}, {x1, 0.6}, 0.3, X_WC),
+          internal::WallPlane({x0, -0.6}, {x1, -0.6}, 0.3, X_WC),
+          internal::WallPlane({2.2, -0.5}, {2.2, 0.5}, 0.3, X_WC)};
 }
 
 TEST(Localization, NoiseFreeOdometryRecordsWallsButNeverMovesThePose) {
@@ -87,13 +51,17 @@ TEST(Localization, PiecesOfOneWallInOneViewCountOnce) {
   LocalizationState state;
   const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
   // the left wall seen as two planes: one landmark, not matched by its own second piece
-  CorrectPose({}, {SeenPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC), SeenPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
+  CorrectPose({},
+              {internal::WallPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC),
+               internal::WallPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
               kPixels, CameraInRobot(), {}, &state);
   ASSERT_EQ(state.landmarks.size(), 1u);
   EXPECT_EQ(state.landmarks[0].matches, 0);
   // the next view's two pieces update it once
   PredictPose({}, {}, Eigen::Vector3d(1e-4, 1e-4, 1e-4).asDiagonal(), &state);
-  CorrectPose({}, {SeenPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC), SeenPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
+  CorrectPose({},
+              {internal::WallPlane({1.0, 0.6}, {1.5, 0.6}, 0.3, X_WC),
+               internal::WallPlane({1.5, 0.6}, {2.0, 0.6}, 0.3, X_WC)},
               kPixels, CameraInRobot(), {}, &state);
   EXPECT_EQ(state.landmarks[0].matches, 1);
 }
@@ -106,7 +74,8 @@ TEST(Localization, WallsSeenBeforeCorrectADriftedPose) {
   const Pose2 truth{1.02, 0.05, 3 * kDeg}, believed{1.0, 0.0, 0.0};
   const Eigen::Matrix3d prior = Eigen::Vector3d(0.04, 0.04, std::pow(10 * kDeg, 2)).asDiagonal();
   PredictPose({}, believed, prior, &state);
-  const Pose2 pose = CorrectPose({}, CorridorSeenFrom(truth), kPixels, CameraInRobot(), believed, &state);
+  const Pose2 pose =
+      CorrectPose({}, CorridorSeenFrom(truth), kPixels, CameraInRobot(), believed, &state);
   EXPECT_NEAR(pose.x, truth.x, 0.005);
   EXPECT_NEAR(pose.y, truth.y, 0.005);
   EXPECT_NEAR(pose.yaw, truth.yaw, 0.3 * kDeg);
@@ -119,12 +88,14 @@ TEST(Localization, WallsSeenBeforeCorrectADriftedPose) {
 TEST(Localization, OneWallCorrectsOnlyWhatItSees) {
   LocalizationState state;
   const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
-  CorrectPose({}, {SeenPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC)}, kPixels, CameraInRobot(), {}, &state);
+  CorrectPose({}, {internal::WallPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC)}, kPixels, CameraInRobot(),
+              {}, &state);
   const Pose2 truth{0.1, 0.04, 0}, believed{0.0, 0.0, 0.0};
-  PredictPose({}, believed, Eigen::Vector3d(0.04, 0.04, std::pow(2 * kDeg, 2)).asDiagonal(), &state);
+  PredictPose({}, believed, Eigen::Vector3d(0.04, 0.04, std::pow(2 * kDeg, 2)).asDiagonal(),
+              &state);
   const Eigen::Isometry3d X_WC_true = Planar(truth) * CameraInRobot();
-  const Pose2 pose = CorrectPose({}, {SeenPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC_true)}, kPixels,
-                                 CameraInRobot(), believed, &state);
+  const Pose2 pose = CorrectPose({}, {internal::WallPlane({1, 0.6}, {2, 0.6}, 0.3, X_WC_true)},
+                                 kPixels, CameraInRobot(), believed, &state);
   EXPECT_NEAR(pose.y, truth.y, 0.01);  // across the wall
   EXPECT_NEAR(pose.x, 0.0, 1e-6);      // along it: no information
 }
@@ -135,7 +106,7 @@ TEST(Localization, AWallFarFromEveryLandmarkIsNewAndMovesNothing) {
   PredictPose({}, {}, Eigen::Vector3d(0.0004, 0.0004, 0.0004).asDiagonal(), &state);
   // a wall 0.4 m inside the left one: beyond the gate of a 2 cm pose uncertainty
   const Eigen::Isometry3d X_WC = Planar({}) * CameraInRobot();
-  const Pose2 pose = CorrectPose({}, {SeenPlane({1, 0.2}, {2, 0.2}, 0.3, X_WC)}, kPixels,
+  const Pose2 pose = CorrectPose({}, {internal::WallPlane({1, 0.2}, {2, 0.2}, 0.3, X_WC)}, kPixels,
                                  CameraInRobot(), {}, &state);
   EXPECT_EQ(pose.y, 0);
   EXPECT_EQ(state.landmarks.size(), 4u);
@@ -149,7 +120,8 @@ TEST(Localization, FloorsSmallAndRoughPlanesAreNoLandmarks) {
   Plane floor;
   for (int i = 0; i < 50; ++i) {
     for (int k = 0; k < 50; ++k) {
-      const Eigen::Vector3d p_C = X_WC.inverse() * Eigen::Vector3d(1 + i * 0.02, -0.5 + k * 0.02, 0);
+      const Eigen::Vector3d p_C =
+          X_WC.inverse() * Eigen::Vector3d(1 + i * 0.02, -0.5 + k * 0.02, 0);
       ++floor.num_points;
       floor.b += p_C;
       floor.A += p_C * p_C.transpose();
@@ -158,8 +130,8 @@ TEST(Localization, FloorsSmallAndRoughPlanesAreNoLandmarks) {
   floor.n = X_WC.linear().transpose() * Eigen::Vector3d::UnitZ();
   floor.d = floor.n.dot(floor.Centroid());
   // a wall too short (0.2 m), and a wall too rough
-  Plane short_wall = SeenPlane({1, 0.6}, {1.2, 0.6}, 0.3, X_WC);
-  Plane rough_wall = SeenPlane({1, -0.6}, {2, -0.6}, 0.3, X_WC);
+  Plane short_wall = internal::WallPlane({1, 0.6}, {1.2, 0.6}, 0.3, X_WC);
+  Plane rough_wall = internal::WallPlane({1, -0.6}, {2, -0.6}, 0.3, X_WC);
   rough_wall.rms = 0.02;
   CorrectPose({}, {floor, short_wall, rough_wall}, kPixels, CameraInRobot(), {}, &state);
   EXPECT_TRUE(state.landmarks.empty());
