@@ -241,6 +241,17 @@ RgbImage DrawGridSideViews(const MapState& state, double p_occ, int ppc) {
   return ToRgb(img);
 }
 
+void WriteFogTypes(const std::string& path, const Fog& fog) {
+  const GridWindow& w = fog.window;
+  cv::Mat types(w.size_y, w.size_x, CV_8UC1);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      types.at<uint8_t>(w.size_y - 1 - iy, ix) = RosValue(fog.TypeAt(ix, iy));
+    }
+  }
+  Write(path, types);
+}
+
 void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& state,
                       const MapParams& params, const Pose2& robot_G) {
   std::error_code ec;
@@ -252,13 +263,12 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
   Write((d / "grid_side.png").string(), ToBgr(DrawGridSideViews(state, params.grid.p_occ)));
 
   // ROS map_server image (row 0 is the highest y) and 16-bit heights
+  WriteFogTypes((d / "fog_types.png").string(), fog);
   const GridWindow& w = fog.window;
-  cv::Mat types(w.size_y, w.size_x, CV_8UC1);
   cv::Mat heights(w.size_y, w.size_x, CV_16UC1);
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const int row = w.size_y - 1 - iy;
-      types.at<uint8_t>(row, ix) = RosValue(fog.TypeAt(ix, iy));
       const float h = fog.HeightAt(ix, iy);
       uint16_t value = 0;
       if (std::isfinite(h)) {
@@ -267,7 +277,6 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
       heights.at<uint16_t>(row, ix) = value;
     }
   }
-  Write((d / "fog_types.png").string(), types);
   Write((d / "fog_heights.png").string(), heights);
 
   const std::string yaml_path = (d / "fog.yaml").string();

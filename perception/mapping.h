@@ -325,6 +325,9 @@ RgbImage DrawFloorMap(const MapState& state, int pixels_per_cell = 6);
 // bottom); darker where more cells of the column are occupied.
 RgbImage DrawGridSideViews(const MapState& state, double p_occ, int pixels_per_cell = 6);
 
+// The types of `fog` as a map_server image (row 0 the highest y; grey values of the legend
+// below). Throws std::runtime_error naming the file if it cannot be written.
+void WriteFogTypes(const std::string& path, const Fog& fog);
 // Writes into `dir` (created if needed): fog.png, floor.png, grid_side.png (pictures above);
 // fog_types.png + fog.yaml (ROS map_server: resolution, origin, trinary mode, and a
 // `fognav_types` legend of the grey value of each type: floor 254, stairs 190, tunnel 160,

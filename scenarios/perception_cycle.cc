@@ -199,6 +199,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   perception::FogScore fog_score = perception::ScoreFog(fog, truth);
   perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
   WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
+  perception::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
   // what the planner makes of the perceived map: the plan a mission would start with
   navigation::PlannerParams planner_params;
   planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
