@@ -200,4 +200,28 @@ std::array<double, 2> RobotVerticalExtent(const Humanoid& h, const mjModel* m, c
   return {lo, hi};
 }
 
+std::array<double, 4> RobotPlanarExtent(const Humanoid& h, const mjModel* m, const mjData* d) {
+  const Eigen::Isometry3d X_RW = RobotFrameInWorld(h, d).inverse();
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  std::array<double, 4> e = {kInf, -kInf, kInf, -kInf};
+  for (int g : h.geom_ids()) {
+    const Eigen::Isometry3d X_RG = X_RW * Pose(d->geom_xpos + 3 * g, d->geom_xmat + 9 * g);
+    for (int axis = 0; axis < 2; ++axis) {
+      double reach = 0;
+      if (m->geom_type[g] == mjGEOM_SPHERE) {
+        reach = m->geom_size[3 * g];
+      } else if (m->geom_type[g] == mjGEOM_CAPSULE) {
+        reach = std::abs(X_RG.linear()(axis, 2)) * m->geom_size[3 * g + 1] + m->geom_size[3 * g];
+      } else {
+        const Eigen::Vector3d half = GeomHalfBox(m, g);
+        for (int i = 0; i < 3; ++i) reach += std::abs(X_RG.linear()(axis, i)) * half[i];
+      }
+      const double c = X_RG.translation()[axis];
+      e[size_t(2 * axis)] = std::min(e[size_t(2 * axis)], c - reach);
+      e[size_t(2 * axis + 1)] = std::max(e[size_t(2 * axis + 1)], c + reach);
+    }
+  }
+  return e;
+}
+
 }  // namespace fognav::sim

@@ -135,6 +135,10 @@ std::vector<RobotBox> RobotBodyBoxes(const Humanoid& h, const mjModel* m, const 
 // 0 and 0.58). Needs mj_kinematics.
 std::array<double, 2> RobotVerticalExtent(const Humanoid& h, const mjModel* m, const mjData* d);
 
+// How far the robot's collision geoms reach in the robot frame: {min x, max x, min y, max y}
+// (x ahead, y to the left), metres. Needs mj_kinematics.
+std::array<double, 4> RobotPlanarExtent(const Humanoid& h, const mjModel* m, const mjData* d);
+
 }  // namespace fognav::sim
 
 #endif  // FOGNAV_SIM_HUMANOID_H_

@@ -426,3 +426,52 @@ TEST_F(ControllerTest, CrawlingHeadLooksAheadAndStaysBelowATunnelCeiling) {
 
 }  // namespace
 }  // namespace fognav::sim
+
+namespace fognav::sim {
+namespace {
+
+// The planner keeps obstacles off the body it assumes (navigation::PlannerParams): soles 0.12 m
+// long, knees from 0.055 m behind the origin to 0.09 m ahead, shoulders 0.13 m to either side
+// (margin 0.015 m on top), the tilted head 0.12 m from the origin. The body must stay inside
+// those, margin included, whatever the controller does.
+TEST_F(ControllerTest, BodyStaysWithinWhatThePlannerAssumes) {
+  Load("");
+  std::array<double, 4> reach = {0, 0, 0, 0};  // behind, ahead, right, left
+  auto track = [&](int) {
+    const auto e = RobotPlanarExtent(c_->humanoid(), m_.get(), d_.get());
+    reach = {std::max(reach[0], -e[0]), std::max(reach[1], e[1]), std::max(reach[2], -e[2]),
+             std::max(reach[3], e[3])};
+  };
+  auto run = [&]() {
+    reach = {0, 0, 0, 0};
+    c_->RunUntilIdle(m_.get(), d_.get(), track);
+  };
+  constexpr double kMargin = 0.015;
+  // at rest the soles and knees lie within the soles' footprint, the arms within the shoulders
+  c_->Walk(0.04, 0, 0);
+  run();
+  const auto rest = RobotPlanarExtent(c_->humanoid(), m_.get(), d_.get());
+  EXPECT_LT(-rest[0], 0.06 + kMargin);
+  EXPECT_LT(rest[1], 0.09 + kMargin);
+  EXPECT_LT(std::max(-rest[2], rest[3]), 0.13 + kMargin);
+  // side-steps and turns in place: the knees come forward as a foot lifts
+  for (const Eigen::Vector3d& move :
+       {Eigen::Vector3d(0, 0.3, 0), Eigen::Vector3d(0, -0.3, 0), Eigen::Vector3d(0, 0, 1.0)}) {
+    c_->Walk(move.x(), move.y(), move.z());
+    run();
+    EXPECT_LT(reach[0], 0.055 + kMargin) << move.transpose();
+    EXPECT_LT(reach[1], 0.09 + kMargin) << move.transpose();
+    EXPECT_GT(reach[1], 0.06 + kMargin) << "the knees pass the soles' footprint";
+    // the arms swing out a little beyond the shoulders' margin (see PlannerParams)
+    EXPECT_LT(std::max(reach[2], reach[3]), 0.13 + kMargin + 0.01) << move.transpose();
+  }
+  // looking down ahead and to the side, the head reaches no further than head_reach + margin
+  for (const HeadAngles& view : {HeadAngles{0.0, 1.1}, HeadAngles{1.2, 1.1}}) {
+    c_->MoveHead(view);
+    run();
+    EXPECT_LT(std::max({reach[1], reach[2], reach[3]}), 0.12 + kMargin + 0.01);
+  }
+}
+
+}  // namespace
+}  // namespace fognav::sim
