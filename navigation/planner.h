@@ -52,8 +52,8 @@ inline constexpr int kNumHeadings = 16;
 // wide enough to side-step through (3 cells); a gap of 2 free cells (0.08 m, narrower than the
 // 0.12 m depth) is passable by no move. The crawling footprint is 0.53 m x 0.29 m, its centre
 // 0.10 m ahead of the origin (the humanoid on knees and hands, head raised, toes behind).
-// The shipped humanoid (models/humanoid.xml) is 0.234 m across the arms and 0.11 m long at the
-// soles, inside these sizes.
+// The shipped humanoid (models/humanoid.xml) is 0.11 m long at the soles, inside these sizes;
+// its knees and head reach further (body_front, head_reach).
 // What may lie under a footprint: standing, unknown cells and floor, stairs and border cells
 // whose height is within h_floor of the floor under the robot's origin (unknown origins take the
 // nearest known floor's), so a standing robot is always level: its feet never reach onto another
@@ -79,10 +79,27 @@ struct PlannerParams {
   double crawl_width = 0.26;     // crawling extent across the heading
   double crawl_offset = 0.10;    // centre of the crawling extent ahead of the robot's origin
   double margin = 0.015;         // safety margin added on every side of both footprints
+  // Standing, the body reaches further than the soles: the knees come forward as a foot lifts
+  // (the shipped humanoid, measured over side-steps and turns in tests/sim: from 0.055 m
+  // behind its origin to 0.09 m ahead). A move that ends with an obstacle or tunnel cell, or a
+  // floor more than h_stairs above the origin's, under this rectangle grown by `margin` but
+  // outside the soles' footprint costs body_touch_cost more: the robot keeps its knees clear
+  // where the map leaves room, and still passes where the map holds a passage a cell
+  // narrower than the body (a 0.22 m gap whose blocks a noisy view widened).
+  double body_back = 0.055;
+  double body_front = 0.09;
+  // across: the arms swing out to 0.152 m, 7 mm past the shoulders' margin; a wider rectangle
+  // on 4 cm cells would take 9 cells instead of 7 and close the 0.34 m passages the robot
+  // walks through
+  double body_half_width = 0.13;
+  double body_touch_cost = 0.5;   // metres-equivalent per move
   // how far the standing robot's head reaches from its origin (looking down, the head box tilts
   // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's
   // origin, so it gets down before its head meets the underside, and up only once clear of it
   double head_reach = 0.12;
+  // Nor may an obstacle or floor cell within that reach rise more than head_low above the floor
+  // under the origin (the tilted head's lowest edge; a table top below the eyes, a tall block)
+  double head_low = 0.40;
 
   // terrain limits (paper Section 6), metres
   double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
@@ -113,6 +130,12 @@ struct PlannerParams {
   // standing footprint and of the cells the head reaches: a ceiling seen only at its edge (a
   // table top just above the eyes) may go on over floor cells the map holds as open.
   bool get_up_under_seen_headroom = true;
+
+  // The cycle's views look ahead, so a robot walking backward, side-stepping or crawling
+  // backward moves where its eyes have not looked: such a move may not bring an unknown cell
+  // (or one beyond the window) under the footprint that it did not cover before. Forward moves
+  // may, as the robot looks ahead after each.
+  bool blind_moves_stay_known = true;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible

@@ -198,6 +198,64 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     }
   }
 
+  // the standing body beyond the soles' footprint
+  {
+    const double back = p.body_back + p.margin, front = p.body_front + p.margin;
+    const double half = p.body_half_width + p.margin;
+    if (!(back >= 0 && front >= 0 && half > 0)) Die("Plan: body extents must not be negative");
+    body_outer_radius_cells_ = std::hypot(std::max(back, front), half) / w.resolution;
+    const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
+      body_extra_[k].clear();
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          const double u = (dx * c + dy * s) * w.resolution;
+          const double v = (-dx * s + dy * c) * w.resolution;
+          if (u < -back - kEps || u > front + kEps || std::abs(v) > half + kEps) continue;
+          bool sole = false;
+          for (const CellStep& f : footprint_[0][k]) sole |= f.dx == dx && f.dy == dy;
+          if (sole) continue;
+          body_extra_[k].push_back({dx, dy});
+          body_reach_cells_ = std::max({body_reach_cells_, std::abs(dx), std::abs(dy)});
+        }
+      }
+    }
+  }
+
+  // the head's reach
+  {
+    const double head = (p.head_reach + p.margin) / w.resolution + kEps;
+    const int reach = int(std::ceil(head));
+    head_disc_.clear();
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        if (std::hypot(double(dx), double(dy)) <= head) head_disc_.push_back({dx, dy});
+      }
+    }
+    body_reach_cells_ = std::max(body_reach_cells_, reach);
+  }
+
+  // the cells a blind move brings under the footprint: offsets o of the new footprint with
+  // o + step (relative to the old origin) outside the old one
+  for (int q = 0; q < 2; ++q) {
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const CellStep back = kSteps[k], across = kSteps[(k + 4) % kNumHeadings];
+      const CellStep delta[3] = {{-back.dx, -back.dy}, {across.dx, across.dy},
+                                 {-across.dx, -across.dy}};
+      for (int b = 0; b < 3; ++b) {
+        std::vector<CellStep>& lead = blind_lead_[q][k][b];
+        lead.clear();
+        for (const CellStep& o : footprint_[q][k]) {
+          const int ox = o.dx + delta[b].dx, oy = o.dy + delta[b].dy;
+          bool covered = false;
+          for (const CellStep& f : footprint_[q][k]) covered |= f.dx == ox && f.dy == oy;
+          if (!covered) lead.push_back(o);
+        }
+      }
+    }
+  }
+
   // cells swept by the standing footprint in a step up or down of m lattice steps: centres in
   // the rectangle from the start footprint's back edge to the end footprint's front edge
   for (int k = 0; k < kNumHeadings; ++k) {
@@ -368,7 +426,7 @@ void Lattice::ComputeLevelRanges() {
   // standing footprint, separably: along x, then along y
   const perception::GridWindow& w = fog_.window;
   const size_t n = size_t(num_cells_);
-  const int r = outer_reach_cells_[0];
+  const int r = std::max(outer_reach_cells_[0], body_reach_cells_);
   constexpr float kFloatInf = std::numeric_limits<float>::infinity();
   std::vector<float> row_lo(n, kFloatInf), row_hi(n, -kFloatInf);
   for (int iy = 0; iy < w.size_y; ++iy) {
@@ -600,12 +658,13 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   const double in = inner_radius_cells_[q] - kEps;
   if (in > 0 && d2 <= in * in) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const float centre_h = floor_h_[size_t(cell)];
+  if (q == 0 && HeadMeetsSolid(cell, ix, iy, centre_h)) return false;
   const int reach = outer_reach_cells_[q];
   const bool inside =
       ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;
   const double out = outer_radius_cells_[q] + kEps;
   const double maybe_d2 = maybe_blocked_d2_[q][size_t(cell)];
-  const float centre_h = floor_h_[size_t(cell)];
   if (maybe_d2 > out * out) {
     if (q == 1 && inside) return true;
     // standing: fits for certain when every known floor height around is on the centre's level
@@ -729,37 +788,44 @@ int Lattice::Successors(int s, Successor* out) {
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   int n = 0;
 
-  // a translation by heading step `dir` keeping heading k and the posture, on one level
-  auto translate = [&](int dir, int sign, double factor, Move move) {
+  // a translation by heading step `dir` keeping heading k and the posture, on one level;
+  // `blind` (0..2, see blind_lead_) for the moves the eyes do not look along, else -1
+  auto translate = [&](int dir, int sign, double factor, Move move, int blind) {
     const int nx = ix + sign * kSteps[dir].dx, ny = iy + sign * kSteps[dir].dy;
     if (!w.Contains(nx, ny)) return;
     const int to = w.Index(nx, ny);
     if (std::abs(HeightStep(cell, to)) > p_.h_floor) return;
     const int t = StateIndex(nx, ny, k, posture);
     if (!Valid(t)) return;
+    if (blind >= 0 && p_.blind_moves_stay_known &&
+        BlindIntoUnknown(nx, ny, int(posture), k, blind)) {
+      return;
+    }
     const bool on_stairs =
         fog_.type[size_t(cell)] == CellType::kStairs || fog_.type[size_t(to)] == CellType::kStairs;
     if (on_stairs) factor = std::max(factor, p_.stairs_factor);
     const double length = step_length_[dir];
-    const double cost =
-        length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
+    double cost = length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
+    if (posture == Posture::kUpright && BodyTouches(to, k)) cost += p_.body_touch_cost;
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`
   auto turn = [&](int k2, double angle, double factor) {
     const int t = StateIndex(ix, iy, k2, posture);
     if (!Valid(t)) return;
-    out[n++] = {t, angle * p_.turn_cost_per_rad * factor, 0.0, Move::kTurn};
+    double cost = angle * p_.turn_cost_per_rad * factor;
+    if (posture == Posture::kUpright && BodyTouches(cell, k2)) cost += p_.body_touch_cost;
+    out[n++] = {t, cost, 0.0, Move::kTurn};
   };
   const int left = (k + 1) % kNumHeadings, right = (k + kNumHeadings - 1) % kNumHeadings;
   const int across = (k + 4) % kNumHeadings;
 
   if (posture == Posture::kUpright) {
-    translate(k, +1, p_.walk_factor, Move::kWalk);
+    translate(k, +1, p_.walk_factor, Move::kWalk, -1);
     AddStairsMove(s, out, &n);  // steps up and down only forward, facing them
-    translate(k, -1, p_.backward_factor, Move::kWalk);
-    translate(across, +1, p_.sidestep_factor, Move::kSidestep);
-    translate(across, -1, p_.sidestep_factor, Move::kSidestep);
+    translate(k, -1, p_.backward_factor, Move::kWalk, 0);
+    translate(across, +1, p_.sidestep_factor, Move::kSidestep, 1);
+    translate(across, -1, p_.sidestep_factor, Move::kSidestep, 2);
     turn(left, turn_angle_[k], 1.0);
     turn(right, turn_angle_[right], 1.0);
     // getting down: the origin moves forward to the knees
@@ -772,8 +838,8 @@ int Lattice::Successors(int s, Successor* out) {
       }
     }
   } else {
-    translate(k, +1, p_.crawl_factor, Move::kCrawl);
-    translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl);
+    translate(k, +1, p_.crawl_factor, Move::kCrawl, -1);
+    translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl, 0);
     turn(left, turn_angle_[k], p_.crawl_factor);
     turn(right, turn_angle_[right], p_.crawl_factor);
     // getting up: the origin moves back from the knees to the feet
@@ -786,6 +852,59 @@ int Lattice::Successors(int s, Successor* out) {
     }
   }
   return n;
+}
+
+bool Lattice::HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const {
+  if (!std::isfinite(centre_h)) return false;
+  const double top = double(centre_h) + p_.head_low;
+  const double head = (p_.head_reach + p_.margin) / fog_.window.resolution + kEps;
+  if (!(blocked_d2_[0][size_t(cell)] <= head * head) && !(double(level_hi_[size_t(cell)]) > top)) {
+    return false;
+  }
+  const perception::GridWindow& w = fog_.window;
+  for (const CellStep& o : head_disc_) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) continue;
+    const size_t i = size_t(w.Index(nx, ny));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kUnknown || t == CellType::kTunnel) continue;  // tunnels: see above
+    if (std::isfinite(fog_.height[i]) && double(fog_.height[i]) > top) return true;
+  }
+  return false;
+}
+
+bool Lattice::BodyTouches(int cell, int heading) const {
+  const perception::GridWindow& w = fog_.window;
+  const float centre_h = floor_h_[size_t(cell)];
+  const double body = body_outer_radius_cells_ + kEps;
+  const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= body * body;
+  const bool high_near = std::isfinite(centre_h) &&
+                         double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
+  if (!obstacle_near && !high_near) return false;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  for (const CellStep& o : body_extra_[heading]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) continue;
+    const size_t i = size_t(w.Index(nx, ny));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kObstacle || t == CellType::kTunnel) return true;
+    if (high_near && t != CellType::kUnknown && std::isfinite(fog_.height[i]) &&
+        double(fog_.height[i]) - double(centre_h) > p_.h_stairs) {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool Lattice::BlindIntoUnknown(int ix, int iy, int q, int k, int b) const {
+  const perception::GridWindow& w = fog_.window;
+  for (const CellStep& o : blind_lead_[q][k][b]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny) || fog_.type[size_t(w.Index(nx, ny))] == CellType::kUnknown) {
+      return true;
+    }
+  }
+  return false;
 }
 
 double Lattice::TerminalCost(int s) const {

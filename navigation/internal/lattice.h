@@ -117,6 +117,15 @@ class Lattice {
 
  private:
   bool FootprintFits(int cell, int heading, int posture) const;
+  // Whether an obstacle or floor cell within head_reach + margin of a standing origin at cell
+  // (ix, iy), on floor centre_h, rises more than head_low above it.
+  bool HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const;
+  // Whether the standing body at (cell, heading) reaches over an obstacle or tunnel cell, or a
+  // floor more than h_stairs above the origin's, beyond the soles' footprint.
+  bool BodyTouches(int cell, int heading) const;
+  // Whether blind move b (see blind_lead_) to (ix, iy) would bring an unknown cell (or one
+  // beyond the window) under the footprint of posture q and heading k.
+  bool BlindIntoUnknown(int ix, int iy, int q, int k, int b) const;
   // Whether cell may lie under a footprint of posture q if level with its origin: a border
   // cell, for crawling only in the crawl zone.
   bool MayBeLevelBorder(size_t cell, int q) const;
@@ -158,8 +167,8 @@ class Lattice {
 
   std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest
   // per cell: lowest and highest known floor height (cells neither unknown nor obstacle, with a
-  // finite FOG height) in the square of half-side outer_reach_cells_[0] around it; +inf / -inf
-  // if none
+  // finite FOG height) in the square around it that holds the standing footprint and body;
+  // +inf / -inf if none
   std::vector<float> level_lo_, level_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
@@ -171,6 +180,14 @@ class Lattice {
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
+  // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
+  std::vector<CellStep> body_extra_[kNumHeadings];
+  double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
+  int body_reach_cells_ = 0;  // largest |offset| component of body_extra_ and head_disc_
+  std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
+  // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
+  // +/-, by heading k + 4), relative to the new origin, that the footprint before did not cover
+  std::vector<CellStep> blind_lead_[2][kNumHeadings][3];
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
   int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint

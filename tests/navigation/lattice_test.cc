@@ -193,10 +193,17 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
           for (int dx = -6; dx <= 6; ++dx) {
             const double u = (dx * c + dy * s) * w.resolution;
             const double v = (-dx * s + dy * c) * w.resolution;
+            const CellType t =
+                w.Contains(ix + dx, iy + dy) ? fog.TypeAt(ix + dx, iy + dy) : CellType::kUnknown;
+            const float h = w.Contains(ix + dx, iy + dy) ? fog.HeightAt(ix + dx, iy + dy) : 0.0f;
+            // within the head's reach nothing rises more than head_low above the origin's floor
+            if (std::hypot(dx, dy) * w.resolution <= p.head_reach + p.margin + 1e-9 &&
+                t != CellType::kUnknown && t != CellType::kTunnel && std::isfinite(h) &&
+                std::isfinite(level) && double(h) - level > p.head_low) {
+              fits = false;
+            }
             if (std::abs(u) > a + 1e-9 || std::abs(v) > b + 1e-9) continue;
             if (!w.Contains(ix + dx, iy + dy)) continue;
-            const CellType t = fog.TypeAt(ix + dx, iy + dy);
-            const float h = fog.HeightAt(ix + dx, iy + dy);
             if (t == CellType::kUnknown) continue;
             if (t == CellType::kObstacle || t == CellType::kTunnel) {
               fits = false;
@@ -356,6 +363,92 @@ TEST(Lattice, ClearanceCostGrowsWithObstacleHeight) {
   EXPECT_GT(lattice.CellCost(46, 10), 2.0 * lattice.CellCost(16, 10));
   EXPECT_GT(lattice.CellCost(16, 10), 0.0);
   EXPECT_EQ(lattice.CellCost(30, 35), 0.0);  // far from both
+}
+
+// The successor of state s that reaches state t, or null.
+const Successor* SuccessorTo(Lattice* lattice, int s, int t, Successor* succ) {
+  const int n = lattice->Successors(s, succ);
+  for (int i = 0; i < n; ++i) {
+    if (succ[i].state == t) return &succ[i];
+  }
+  return nullptr;
+}
+
+// A standing robot's tilted head reaches head_reach + margin (3 cells): nothing higher than
+// head_low may lie there, a low block may.
+TEST(Lattice, HeadKeepsClearOfTallSolids) {
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.80, 0.20, 0.84, 0.24, CellType::kObstacle, 0.50f);   // cell (20, 5)
+  FillBox(&fog, 0.80, 0.60, 0.84, 0.64, CellType::kObstacle, 0.20f);   // cell (20, 15)
+  FillBox(&fog, 0.80, 1.00, 0.84, 1.04, CellType::kFloor, 0.46f);      // cell (20, 25): a top
+  Lattice lattice(fog, {1.4, 0.6}, PlannerParams());
+  for (int k : {0, 4, 8}) {  // facing it, beside it, facing away
+    // three cells away: only the head reaches it
+    EXPECT_FALSE(lattice.Valid(lattice.StateIndex(17, 5, k, Posture::kUpright))) << k;
+    // (beside it, the shoulders' footprint itself covers the low block)
+    if (k != 4) {
+      EXPECT_TRUE(lattice.Valid(lattice.StateIndex(17, 15, k, Posture::kUpright))) << k;
+    }
+    EXPECT_FALSE(lattice.Valid(lattice.StateIndex(17, 25, k, Posture::kUpright))) << k;
+    // four cells away: clear
+    EXPECT_TRUE(lattice.Valid(lattice.StateIndex(16, 5, k, Posture::kUpright))) << k;
+    EXPECT_TRUE(lattice.Valid(lattice.StateIndex(16, 25, k, Posture::kUpright))) << k;
+  }
+}
+
+// Walking backward and side-stepping never bring unknown cells under the footprint; walking
+// forward may.
+TEST(Lattice, BlindMovesStayOnKnownCells) {
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.0, 0.0, 0.56, 1.2, CellType::kUnknown, -INFINITY);  // x < 0.56 unknown
+  FillBox(&fog, 0.0, 0.0, 1.6, 0.44, CellType::kUnknown, -INFINITY);  // y < 0.44 unknown
+  FillBox(&fog, 1.04, 0.0, 1.6, 1.2, CellType::kUnknown, -INFINITY);  // x >= 1.04 unknown
+  Lattice lattice(fog, {0.8, 0.9}, PlannerParams());
+  Successor succ[kMaxSuccessors];
+  // facing +x at (15, 14): the footprint covers x cells 14..16 and y cells 11..17, all known
+  const int s = lattice.StateIndex(15, 14, 0, Posture::kUpright);
+  ASSERT_TRUE(lattice.Valid(s));
+  // back to x cell 13 brings unknown cells 13 under it; right to y cell 13 brings row 10
+  EXPECT_EQ(SuccessorTo(&lattice, s, lattice.StateIndex(14, 14, 0, Posture::kUpright), succ),
+            nullptr);
+  EXPECT_EQ(SuccessorTo(&lattice, s, lattice.StateIndex(15, 13, 0, Posture::kUpright), succ),
+            nullptr);
+  // left and forward are known
+  EXPECT_NE(SuccessorTo(&lattice, s, lattice.StateIndex(15, 15, 0, Posture::kUpright), succ),
+            nullptr);
+  EXPECT_NE(SuccessorTo(&lattice, s, lattice.StateIndex(16, 14, 0, Posture::kUpright), succ),
+            nullptr);
+  // facing +x at (24, 20), the cell ahead of x cell 26 is unknown: forward is allowed, as is
+  // backward onto known cells
+  const int f = lattice.StateIndex(24, 20, 0, Posture::kUpright);
+  ASSERT_TRUE(lattice.Valid(f));
+  EXPECT_NE(SuccessorTo(&lattice, f, lattice.StateIndex(25, 20, 0, Posture::kUpright), succ),
+            nullptr);
+  EXPECT_NE(SuccessorTo(&lattice, f, lattice.StateIndex(23, 20, 0, Posture::kUpright), succ),
+            nullptr);
+}
+
+// The knees reach past the soles' footprint: a walk that ends with an obstacle under them costs
+// body_touch_cost more than the same walk in the open.
+TEST(Lattice, KneesOverAnObstacleCostMore) {
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.80, 0.20, 0.84, 0.24, CellType::kObstacle, 0.10f);  // cell (20, 5)
+  const PlannerParams p;
+  Lattice lattice(fog, {1.4, 0.6}, p);
+  Successor succ[kMaxSuccessors];
+  // facing +x: from x cell 17 to 18 the obstacle comes 2 cells (0.08 m) ahead, under the knees
+  // (0.09 m + margin) but not the soles (0.06 m + margin)
+  const Successor* near = SuccessorTo(&lattice, lattice.StateIndex(17, 5, 0, Posture::kUpright),
+                                      lattice.StateIndex(18, 5, 0, Posture::kUpright), succ);
+  ASSERT_NE(near, nullptr);
+  const double near_cost = near->cost;
+  const Successor* open = SuccessorTo(&lattice, lattice.StateIndex(17, 20, 0, Posture::kUpright),
+                                      lattice.StateIndex(18, 20, 0, Posture::kUpright), succ);
+  ASSERT_NE(open, nullptr);
+  const double open_cost = open->cost;
+  // the clearance cost differs a little too: compare against the pure body term
+  EXPECT_GT(near_cost - open_cost, 0.9 * p.body_touch_cost);
+  EXPECT_LT(near_cost - open_cost, p.body_touch_cost + 0.1);
 }
 
 }  // namespace
