@@ -59,6 +59,22 @@ const std::vector<sim::HeadAngles> kCycleViews = {
 // overhead, down to see the floor ahead
 const std::vector<double> kCrawlElevations = {0.15, -0.6};
 
+// Plans to within params' tolerance (half the scenario's, so the robot ends inside it despite
+// odometry and cells); where no pose lies that near (a goal at the foot of a wall), to any pose
+// within the scenario's tolerance, with half a cell to spare for the cell centres.
+nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& start,
+                           const Scenario& scenario, const nav::PlannerParams& params,
+                           nav::Posture posture) {
+  nav::PlanResult plan = nav::Plan(fog, start, scenario.goal, params, posture);
+  if (plan.status == nav::PlanStatus::kOk || plan.reason != nav::NoPathReason::kGoalBlocked) {
+    return plan;
+  }
+  nav::PlannerParams wider = params;
+  wider.goal_tolerance = std::max(params.goal_tolerance,
+                                  scenario.goal_tolerance - 0.5 * fog.window.resolution);
+  return nav::Plan(fog, start, scenario.goal, wider, posture);
+}
+
 }  // namespace
 
 MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options) {
@@ -218,7 +234,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
                                      ? nav::Posture::kCrawling
                                      : nav::Posture::kUpright;
-    plan = nav::Plan(fog, believed, scenario.goal, planner_params, posture);
+    plan = PlanToGoal(fog, believed, scenario, planner_params, posture);
     timing["planning"].push_back(Ms(start));
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
@@ -381,7 +397,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   whole.size_x = int(std::ceil(scenario.floor_size.x() / whole.resolution)) + 4;
   whole.size_y = int(std::ceil(scenario.floor_size.y() / whole.resolution)) + 4;
   const perception::Fog world_fog = TruthFog(scenario, whole, perception_params.map.fog);
-  const nav::PlanResult optimal = nav::Plan(world_fog, scenario.start, scenario.goal, planner_params);
+  const nav::PlanResult optimal =
+      PlanToGoal(world_fog, scenario.start, scenario, planner_params, nav::Posture::kUpright);
   const double optimal_length =
       optimal.status == nav::PlanStatus::kOk && optimal.reaches_goal ? optimal.length : 0.0;
   const double spl = reached_goal && optimal_length > 0
@@ -407,6 +424,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
            options.out_dir + "/maps/final_plan.png");
   WritePng(perception::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
+  perception::WriteFogTypes(options.out_dir + "/maps/fog_truth_types.png", truth_fog);
   WritePng(nav::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),
            options.out_dir + "/maps/optimal_plan.png");
 
