@@ -858,9 +858,8 @@ bool Lattice::HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const {
   if (!std::isfinite(centre_h)) return false;
   const double top = double(centre_h) + p_.head_low;
   const double head = (p_.head_reach + p_.margin) / fog_.window.resolution + kEps;
-  if (!(blocked_d2_[0][size_t(cell)] <= head * head) && !(double(level_hi_[size_t(cell)]) > top)) {
-    return false;
-  }
+  const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= head * head;
+  if (!obstacle_near && !(double(level_hi_[size_t(cell)]) > top)) return false;
   const perception::GridWindow& w = fog_.window;
   for (const CellStep& o : head_disc_) {
     const int nx = ix + o.dx, ny = iy + o.dy;
