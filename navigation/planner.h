@@ -85,14 +85,13 @@ struct PlannerParams {
   // floor more than h_stairs above the origin's, under this rectangle grown by `margin` but
   // outside the soles' footprint costs body_touch_cost more: the robot keeps its knees clear
   // where the map leaves room, and still passes where the map holds a passage a cell
-  // narrower than the body (a 0.22 m gap whose blocks a noisy view widened).
+  // narrower than the body (a 0.22 m gap whose blocks a noisy view widened). Across, the
+  // body is the shoulders' width: the arms swing out to 0.152 m, 7 mm past the shoulders'
+  // margin, but a wider rectangle on 4 cm cells would take 9 cells instead of 7 and close the
+  // 0.34 m passages the robot walks through.
   double body_back = 0.055;
   double body_front = 0.09;
-  // across: the arms swing out to 0.152 m, 7 mm past the shoulders' margin; a wider rectangle
-  // on 4 cm cells would take 9 cells instead of 7 and close the 0.34 m passages the robot
-  // walks through
-  double body_half_width = 0.13;
-  double body_touch_cost = 0.5;   // metres-equivalent per move
+  double body_touch_cost = 0.5;  // metres-equivalent per move
   // how far the standing robot's head reaches from its origin (looking down, the head box tilts
   // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's
   // origin, so it gets down before its head meets the underside, and up only once clear of it

@@ -383,7 +383,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   const bool reached_goal = goal_distance <= scenario.goal_tolerance;
   const perception::Pose2 believed = ToPerception(controller.believed_pose());
   const perception::Pose2 truth_pose = ToPerception(controller.TruePose(d));
-  const Eigen::Isometry3d X_GW = perception::Planar(believed) * perception::Planar(truth_pose).inverse();
+  const Eigen::Isometry3d X_GW =
+      perception::Planar(believed) * perception::Planar(truth_pose).inverse();
   fog = perception::ComputeFog(perception_params.map, maps);
   const perception::Fog truth_fog = TruthFog(scenario, fog.window, perception_params.map.fog, X_GW);
   const perception::FogScore fog_score = perception::ScoreFog(fog, truth_fog);

@@ -18,6 +18,12 @@ using perception::CellType;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = 1e-9;
 
+// Whether offset (dx, dy) is one of `cells`.
+bool Covers(const std::vector<CellStep>& cells, int dx, int dy) {
+  return std::any_of(cells.begin(), cells.end(),
+                     [&](const CellStep& c) { return c.dx == dx && c.dy == dy; });
+}
+
 constexpr CellStep kSteps[kNumHeadings] = {{1, 0},  {2, 1},   {1, 1},   {1, 2},
                                            {0, 1},  {-1, 2},  {-1, 1},  {-2, 1},
                                            {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2},
@@ -111,8 +117,8 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
 }
 
 void SearchMemory::Begin(int num_states) {
-  // generations live in the upper 30 bits of the stamps; start over before they wrap
-  if (generation >= (1u << 29)) {
+  // generations live in the upper 29 bits of the stamps; start over before they wrap
+  if (generation >= (1u << 28)) {
     generation = 0;
     std::fill(valid_stamp.begin(), valid_stamp.end(), 0u);
     std::fill(search_stamp.begin(), search_stamp.end(), 0u);
@@ -201,8 +207,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   // the standing body beyond the soles' footprint
   {
     const double back = p.body_back + p.margin, front = p.body_front + p.margin;
-    const double half = p.body_half_width + p.margin;
-    if (!(back >= 0 && front >= 0 && half > 0)) Die("Plan: body extents must not be negative");
+    const double half = half_across[0];
+    if (!(back >= 0 && front >= 0)) Die("Plan: body extents must not be negative");
     body_outer_radius_cells_ = std::hypot(std::max(back, front), half) / w.resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
@@ -213,9 +219,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
           const double u = (dx * c + dy * s) * w.resolution;
           const double v = (-dx * s + dy * c) * w.resolution;
           if (u < -back - kEps || u > front + kEps || std::abs(v) > half + kEps) continue;
-          bool sole = false;
-          for (const CellStep& f : footprint_[0][k]) sole |= f.dx == dx && f.dy == dy;
-          if (sole) continue;
+          if (Covers(footprint_[0][k], dx, dy)) continue;
           body_extra_[k].push_back({dx, dy});
           body_reach_cells_ = std::max({body_reach_cells_, std::abs(dx), std::abs(dy)});
         }
@@ -247,10 +251,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
         std::vector<CellStep>& lead = blind_lead_[q][k][b];
         lead.clear();
         for (const CellStep& o : footprint_[q][k]) {
-          const int ox = o.dx + delta[b].dx, oy = o.dy + delta[b].dy;
-          bool covered = false;
-          for (const CellStep& f : footprint_[q][k]) covered |= f.dx == ox && f.dy == oy;
-          if (!covered) lead.push_back(o);
+          if (!Covers(footprint_[q][k], o.dx + delta[b].dx, o.dy + delta[b].dy)) lead.push_back(o);
         }
       }
     }
@@ -301,6 +302,9 @@ void Lattice::ComputePermissions() {
                                !fog_.headroom_seen[i]);
   }
   SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2_);
+  std::vector<uint8_t> unknown(n);
+  for (size_t i = 0; i < n; ++i) unknown[i] = fog_.type[i] == CellType::kUnknown;
+  SquaredDistanceTransform(unknown, w.size_x, w.size_y, &unknown_d2_);
   SquaredDistanceTransform(ceiling, w.size_x, w.size_y, &zone_d2_);
   const double zone_cells = p_.crawl_zone_radius / w.resolution;
   ok_[0].assign(n, 0);
@@ -704,13 +708,15 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   return true;
 }
 
-bool Lattice::Valid(int s) {
+uint32_t Lattice::StateFlags(int s) {
   uint32_t& v = memory_->valid_stamp[size_t(s)];
-  if ((v >> 2) != memory_->generation) {
-    const bool fits = FootprintFits(CellOfState(s), HeadingOfState(s), int(PostureOfState(s)));
-    v = (memory_->generation << 2) | (fits ? 1u : 2u);
+  if ((v >> 3) != memory_->generation) {
+    const int cell = CellOfState(s), heading = HeadingOfState(s), q = int(PostureOfState(s));
+    const bool fits = FootprintFits(cell, heading, q);
+    const bool touches = fits && q == 0 && BodyTouches(cell, heading);
+    v = (memory_->generation << 3) | (fits ? 1u : 2u) | (touches ? 4u : 0u);
   }
-  return (v & 3u) == 1u;
+  return v & 7u;
 }
 
 bool Lattice::SweepClear(int cell, int heading, int steps, double lo, double hi) const {
@@ -796,7 +802,8 @@ int Lattice::Successors(int s, Successor* out) {
     const int to = w.Index(nx, ny);
     if (std::abs(HeightStep(cell, to)) > p_.h_floor) return;
     const int t = StateIndex(nx, ny, k, posture);
-    if (!Valid(t)) return;
+    const uint32_t flags = StateFlags(t);
+    if (!(flags & 1u)) return;
     if (blind >= 0 && p_.blind_moves_stay_known &&
         BlindIntoUnknown(nx, ny, int(posture), k, blind)) {
       return;
@@ -806,15 +813,16 @@ int Lattice::Successors(int s, Successor* out) {
     if (on_stairs) factor = std::max(factor, p_.stairs_factor);
     const double length = step_length_[dir];
     double cost = length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
-    if (posture == Posture::kUpright && BodyTouches(to, k)) cost += p_.body_touch_cost;
+    if (flags & 4u) cost += p_.body_touch_cost;
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`
   auto turn = [&](int k2, double angle, double factor) {
     const int t = StateIndex(ix, iy, k2, posture);
-    if (!Valid(t)) return;
+    const uint32_t flags = StateFlags(t);
+    if (!(flags & 1u)) return;
     double cost = angle * p_.turn_cost_per_rad * factor;
-    if (posture == Posture::kUpright && BodyTouches(cell, k2)) cost += p_.body_touch_cost;
+    if (flags & 4u) cost += p_.body_touch_cost;
     out[n++] = {t, cost, 0.0, Move::kTurn};
   };
   const int left = (k + 1) % kNumHeadings, right = (k + kNumHeadings - 1) % kNumHeadings;
@@ -897,6 +905,13 @@ bool Lattice::BodyTouches(int cell, int heading) const {
 
 bool Lattice::BlindIntoUnknown(int ix, int iy, int q, int k, int b) const {
   const perception::GridWindow& w = fog_.window;
+  // no unknown cell within the footprint's reach, and all of it inside the window
+  const int reach = outer_reach_cells_[q];
+  const double out = outer_radius_cells_[q] + kEps;
+  if (unknown_d2_[size_t(w.Index(ix, iy))] > out * out && ix - reach >= 0 && iy - reach >= 0 &&
+      ix + reach < w.size_x && iy + reach < w.size_y) {
+    return false;
+  }
   for (const CellStep& o : blind_lead_[q][k][b]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny) || fog_.type[size_t(w.Index(nx, ny))] == CellType::kUnknown) {

@@ -55,7 +55,8 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
 // clears them: an entry counts only if its stamp carries the current generation.
 struct SearchMemory {
   uint32_t generation = 0;
-  std::vector<uint32_t> valid_stamp;  // generation << 2 | 1 (valid) or 2 (invalid)
+  // generation << 3 | 1 (valid) or 2 (invalid) | 4 (valid, standing, the knees over something)
+  std::vector<uint32_t> valid_stamp;
   std::vector<uint32_t> search_stamp;  // generation << 1 (reached) | 1 (closed)
   std::vector<double> g;
   std::vector<int32_t> parent;  // a state, or -1 - seed index for seeds
@@ -92,7 +93,7 @@ class Lattice {
   }
 
   // Whether the footprint of state s lies on cells that permit its posture (cached).
-  bool Valid(int s);
+  bool Valid(int s) { return (StateFlags(s) & 1u) != 0; }
   // Writes the successors of a valid state into out (at most kMaxSuccessors); returns how many.
   int Successors(int s, Successor* out);
   // Cost of ending the path at state s: 0 in the goal region, the exit cost when the goal is
@@ -116,6 +117,8 @@ class Lattice {
   }
 
  private:
+  // The cached flags of state s (see SearchMemory::valid_stamp), computed on first use.
+  uint32_t StateFlags(int s);
   bool FootprintFits(int cell, int heading, int posture) const;
   // Whether an obstacle or floor cell within head_reach + margin of a standing origin at cell
   // (ix, iy), on floor centre_h, rises more than head_low above it.
@@ -177,6 +180,7 @@ class Lattice {
   std::vector<double> maybe_blocked_d2_[2];
   int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
   std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
+  std::vector<double> unknown_d2_;  // squared distance to the nearest unknown cell, cells^2
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint

@@ -405,27 +405,26 @@ TEST(Lattice, BlindMovesStayOnKnownCells) {
   FillBox(&fog, 1.04, 0.0, 1.6, 1.2, CellType::kUnknown, -INFINITY);  // x >= 1.04 unknown
   Lattice lattice(fog, {0.8, 0.9}, PlannerParams());
   Successor succ[kMaxSuccessors];
+  // whether standing state `from` has a move to cell (ix, iy), heading +x
+  auto moves_to = [&](int from, int ix, int iy) {
+    return SuccessorTo(&lattice, from, lattice.StateIndex(ix, iy, 0, Posture::kUpright), succ) !=
+           nullptr;
+  };
   // facing +x at (15, 14): the footprint covers x cells 14..16 and y cells 11..17, all known
   const int s = lattice.StateIndex(15, 14, 0, Posture::kUpright);
   ASSERT_TRUE(lattice.Valid(s));
   // back to x cell 13 brings unknown cells 13 under it; right to y cell 13 brings row 10
-  EXPECT_EQ(SuccessorTo(&lattice, s, lattice.StateIndex(14, 14, 0, Posture::kUpright), succ),
-            nullptr);
-  EXPECT_EQ(SuccessorTo(&lattice, s, lattice.StateIndex(15, 13, 0, Posture::kUpright), succ),
-            nullptr);
+  EXPECT_FALSE(moves_to(s, 14, 14));
+  EXPECT_FALSE(moves_to(s, 15, 13));
   // left and forward are known
-  EXPECT_NE(SuccessorTo(&lattice, s, lattice.StateIndex(15, 15, 0, Posture::kUpright), succ),
-            nullptr);
-  EXPECT_NE(SuccessorTo(&lattice, s, lattice.StateIndex(16, 14, 0, Posture::kUpright), succ),
-            nullptr);
+  EXPECT_TRUE(moves_to(s, 15, 15));
+  EXPECT_TRUE(moves_to(s, 16, 14));
   // facing +x at (24, 20), the cell ahead of x cell 26 is unknown: forward is allowed, as is
   // backward onto known cells
   const int f = lattice.StateIndex(24, 20, 0, Posture::kUpright);
   ASSERT_TRUE(lattice.Valid(f));
-  EXPECT_NE(SuccessorTo(&lattice, f, lattice.StateIndex(25, 20, 0, Posture::kUpright), succ),
-            nullptr);
-  EXPECT_NE(SuccessorTo(&lattice, f, lattice.StateIndex(23, 20, 0, Posture::kUpright), succ),
-            nullptr);
+  EXPECT_TRUE(moves_to(f, 25, 20));
+  EXPECT_TRUE(moves_to(f, 23, 20));
 }
 
 // The knees reach past the soles' footprint: a walk that ends with an obstacle under them costs
