@@ -170,7 +170,58 @@ PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
   return r;
 }
 
+// the lattice state of a path pose: its cell, its heading if it is a lattice heading, its posture
+bool StateOfPose(const internal::Lattice& lattice, const perception::GridWindow& window,
+                 const PathPose& q, int* state) {
+  int ix = 0, iy = 0;
+  window.CellOf(q.pose_G.x, q.pose_G.y, &ix, &iy);
+  if (!window.Contains(ix, iy)) return false;
+  const int heading = internal::NearestHeading(q.pose_G.yaw);
+  const double off = q.pose_G.yaw - internal::HeadingYaw(heading);
+  if (std::abs(std::atan2(std::sin(off), std::cos(off))) > 1e-3) return false;
+  *state = lattice.StateIndex(ix, iy, heading, q.posture);
+  return true;
+}
+
 }  // namespace
+
+PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, size_t from,
+                        const perception::Pose2& start_G, const Eigen::Vector2d& goal_G,
+                        const PlannerParams& p) {
+  if (earlier.status != PlanStatus::kOk || from >= earlier.path.size()) {
+    return NoPath(NoPathReason::kStartBlocked);
+  }
+  thread_local internal::SearchMemory memory;
+  internal::Lattice lattice(fog, goal_G, p, &memory, /*toward=*/false);
+  int s = 0;
+  if (!StateOfPose(lattice, fog.window, earlier.path[from], &s) || !lattice.Valid(s)) {
+    return NoPath(NoPathReason::kStartBlocked);
+  }
+  PlanResult r;
+  r.path.push_back({start_G, Move::kNone, earlier.path[from].posture,
+                    lattice.FloorHeight(lattice.CellOfState(s))});
+  internal::Successor succ[internal::kMaxSuccessors];
+  for (size_t k = from + 1; k < earlier.path.size(); ++k) {
+    int t = 0;
+    if (!StateOfPose(lattice, fog.window, earlier.path[k], &t)) break;  // beyond the window
+    const int count = lattice.Successors(s, succ);
+    const internal::Successor* edge = std::find_if(succ, succ + count, [&](const auto& e) {
+      return e.state == t && e.move == earlier.path[k].move;
+    });
+    if (edge == succ + count) return NoPath(NoPathReason::kGoalEnclosed);
+    r.cost += edge->cost;
+    r.length += edge->length;
+    r.path.push_back({lattice.PoseOf(t), edge->move, lattice.PostureOfState(t),
+                      lattice.FloorHeight(lattice.CellOfState(t))});
+    s = t;
+  }
+  const double terminal = lattice.TerminalCost(s);
+  if (terminal == kInf) return NoPath(NoPathReason::kGoalEnclosed);
+  r.status = PlanStatus::kOk;
+  r.reaches_goal = lattice.GoalInWindow();
+  r.cost += terminal;
+  return r;
+}
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {

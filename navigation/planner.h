@@ -231,6 +231,16 @@ PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture = Posture::kUpright);
 
+// The rest of an earlier plan on a new map: the robot at start_G (on or near the lattice pose
+// earlier.path[from]) follows the same moves on, priced as Plan prices them on `fog`, with the
+// new map's floor heights, and the exit term where the goal is outside the window (the path is
+// cut where it leaves the window). kNoPath when that pose or one of the moves is no longer
+// allowed, or the path ends outside a goal region in the window. A robot that re-plans as it
+// learns the map keeps to its plan while this costs about what a new plan does, so that two
+// nearly equal ways do not take turns.
+PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, size_t from,
+                        const perception::Pose2& start_G, const Eigen::Vector2d& goal_G,
+                        const PlannerParams& p);
 // A run of one kind of move along a path, from path[first] to path[last] (first < last): the
 // robot frame at path[first] holds the run's displacement as one motion command. Walks and
 // crawls split where the direction flips between forward and backward; each step up or down and

@@ -49,6 +49,11 @@ struct ExecutionLimits {
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
+  // the robot keeps to its plan while the rest of it costs at most this much more than a new
+  // plan (metres-equivalent, and as a share of the new plan's cost, whichever is more), so two
+  // nearly equal ways round an obstacle, or a goal at the map window's edge, do not take turns
+  double keep_plan_margin = 0.25;
+  double keep_plan_share = 0.05;
 };
 
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
@@ -62,16 +67,19 @@ const std::vector<double> kCrawlElevations = {0.15, -0.6};
 // Plans to within params' tolerance (half the scenario's, so the robot ends inside it despite
 // odometry and cells); where no pose lies that near (a goal at the foot of a wall), to any pose
 // within the scenario's tolerance, with half a cell to spare for the cell centres.
+// `used` gets the parameters of the plan returned.
 nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& start,
                            const Scenario& scenario, const nav::PlannerParams& params,
-                           nav::Posture posture) {
+                           nav::Posture posture, nav::PlannerParams* used = nullptr) {
+  nav::PlannerParams wider = params;
+  if (used) *used = params;
   nav::PlanResult plan = nav::Plan(fog, start, scenario.goal, params, posture);
   if (plan.status == nav::PlanStatus::kOk || plan.reason != nav::NoPathReason::kGoalBlocked) {
     return plan;
   }
-  nav::PlannerParams wider = params;
   wider.goal_tolerance = std::max(params.goal_tolerance,
                                   scenario.goal_tolerance - 0.5 * fog.window.resolution);
+  if (used) *used = wider;
   return nav::Plan(fog, start, scenario.goal, wider, posture);
 }
 
@@ -209,6 +217,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::string failure;
   std::string failure_detail;  // why: the planner's no-path reason, the colliding geoms
   nav::PlanResult plan;
+  nav::PlanResult last_plan;  // the plan of the last cycle and the pose its run ended at
+  size_t last_plan_at = 0;
   perception::Fog fog;
   look_around();
   perception::Pose2 looked_at = ToPerception(controller.believed_pose());
@@ -234,7 +244,25 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
                                      ? nav::Posture::kCrawling
                                      : nav::Posture::kUpright;
-    plan = PlanToGoal(fog, believed, scenario, planner_params, posture);
+    nav::PlannerParams used = planner_params;
+    plan = PlanToGoal(fog, believed, scenario, planner_params, posture, &used);
+    // keep to the last plan where the robot got to its end of the run and the rest of it is
+    // still allowed and about as cheap
+    if (plan.status == nav::PlanStatus::kOk && last_plan.status == nav::PlanStatus::kOk &&
+        last_plan_at < last_plan.path.size()) {
+      const nav::PathPose& at = last_plan.path[last_plan_at];
+      if (at.posture == posture && std::hypot(at.pose_G.x - believed.x, at.pose_G.y - believed.y) <
+                                       0.5 * fog.window.resolution &&
+          std::abs(WrapAngle(at.pose_G.yaw - believed.yaw)) < 0.05) {
+        nav::PlanResult rest =
+            nav::ContinuePlan(fog, last_plan, last_plan_at, believed, scenario.goal, used);
+        if (rest.status == nav::PlanStatus::kOk && rest.path.size() >= 2 &&
+            rest.cost <= plan.cost + std::max(limits.keep_plan_margin,
+                                              limits.keep_plan_share * plan.cost)) {
+          plan = std::move(rest);
+        }
+      }
+    }
     timing["planning"].push_back(Ms(start));
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
@@ -283,6 +311,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
     }
     const nav::PathPose& goal_pose = plan.path[target];
+    last_plan = plan;
+    last_plan_at = size_t(target);
     const Eigen::Vector3d delta = Relative(believed, goal_pose.pose_G);
     current_move = nav::MoveName(run.move);
     const sim::StepLimits& step_limits = controller_params.limits;

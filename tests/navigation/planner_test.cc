@@ -988,5 +988,40 @@ TEST(PathPicture, DrawsTheGoalAndClipsPosesOutsideTheMap) {
   EXPECT_GT(picture.at(on_line.x(), on_line.y()).b, 100);
 }
 
+// The rest of an optimal plan is optimal from where it goes on, so continuing it on the same map
+// costs what a new plan from there does; an obstacle put on it later ends it.
+TEST(Planner, ContinuesAPlanWhileTheMapAllowsIt) {
+  internal::Course course = internal::PaperCourse();
+  const PlannerParams p;
+  const PlanResult plan = Plan(course.fog, course.start_G, course.goal_G, p);
+  ASSERT_EQ(plan.status, PlanStatus::kOk);
+  ASSERT_GT(plan.path.size(), 40u);
+  for (size_t k : {size_t(1), size_t(12), plan.path.size() / 2, plan.path.size() - 2}) {
+    const Pose2 at = plan.path[k].pose_G;
+    const PlanResult rest = ContinuePlan(course.fog, plan, k, at, course.goal_G, p);
+    ASSERT_EQ(rest.status, PlanStatus::kOk) << k;
+    EXPECT_TRUE(rest.reaches_goal);
+    ASSERT_EQ(rest.path.size(), plan.path.size() - k) << k;
+    for (size_t i = 1; i < rest.path.size(); ++i) {
+      EXPECT_EQ(rest.path[i].move, plan.path[k + i].move);
+      EXPECT_NEAR(rest.path[i].pose_G.x, plan.path[k + i].pose_G.x, 1e-9);
+      EXPECT_NEAR(rest.path[i].pose_G.y, plan.path[k + i].pose_G.y, 1e-9);
+    }
+    const PlanResult fresh = Plan(course.fog, at, course.goal_G, p, plan.path[k].posture);
+    ASSERT_EQ(fresh.status, PlanStatus::kOk);
+    EXPECT_NEAR(rest.cost, fresh.cost, 1e-6) << k;
+  }
+  // a block on the far half of the path
+  const size_t k = plan.path.size() * 3 / 4;
+  const Pose2 q = plan.path[k].pose_G;
+  Fog blocked = course.fog;
+  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  EXPECT_EQ(ContinuePlan(blocked, plan, 1, plan.path[1].pose_G, course.goal_G, p).status,
+            PlanStatus::kNoPath);
+  // past the block it goes on
+  EXPECT_EQ(ContinuePlan(blocked, plan, k + 10, plan.path[k + 10].pose_G, course.goal_G, p).status,
+            PlanStatus::kOk);
+}
+
 }  // namespace
 }  // namespace fognav::navigation
