@@ -9,11 +9,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include <nlohmann/json.hpp>
 
 #include "navigation/planner.h"
+#include "perception/step_edge.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/video.h"
 #include "sim/controller.h"
@@ -54,6 +56,41 @@ struct ExecutionLimits {
   // nearly equal ways round an obstacle, or a goal at the map window's edge, do not take turns
   double keep_plan_margin = 0.25;
   double keep_plan_share = 0.05;
+  // The stair-climbing module (perception/step_edge.h): the edges of the steps up or down on
+  // the plan within edge_lookahead (path length) are measured from each cycle's view while at
+  // least edge_min_range away (nearer, the robot's own body hides them), and with a look of its
+  // own at the next one within edge_look_range. The step then lands the heel heel_margin past
+  // the edge (half a cell, so that the next plan's snap to a cell centre keeps it past), the walk
+  // up to a riser stops the toes toe_margin short of it, each at most edge_correction from where
+  // the plan's cells put them.
+  double edge_lookahead = 0.8;
+  double edge_min_range = 0.2;
+  double edge_look_range = 0.45;
+  double heel_margin = 0.02;
+  double toe_margin = 0.01;
+  double edge_correction = 0.04;
+};
+
+// The measured edge of a step ahead (grid frame): a point on it, the heading it was measured
+// along, and the two levels.
+struct StepEdge {
+  Eigen::Vector2d point_G = Eigen::Vector2d::Zero();
+  double yaw = 0;
+  double floor_z = 0, target_z = 0;
+  // distance along `yaw` from `from` to the edge, if the edge is the one between these levels
+  // (within h_floor) and was measured along about this heading; NaN otherwise
+  double Ahead(const perception::Pose2& from, double from_z, double to_z, double h_floor) const {
+    if (std::abs(from_z - floor_z) > h_floor || std::abs(to_z - target_z) > h_floor ||
+        std::abs(WrapAngle(from.yaw - yaw)) > 0.2) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const Eigen::Vector2d d = point_G - Eigen::Vector2d(from.x, from.y);
+    const Eigen::Vector2d along(std::cos(from.yaw), std::sin(from.yaw));
+    if (std::abs(along.x() * d.y() - along.y() * d.x()) > 0.2) {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    return along.dot(d);
+  }
 };
 
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
@@ -208,6 +245,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
   };
 
+  // the neck angles that give the camera the wanted pan and elevation above the horizon, from
+  // its kinematic pose
+  auto head_at_elevation = [&](double pan, double wanted_elevation) {
+    const Eigen::Vector3d forward_R =
+        sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).rotation().col(2);
+    const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
+    const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
+    return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
+  };
+
   auto true_goal_distance = [&]() {
     sim::Pose2 t = controller.TruePose(d);
     return std::hypot(t.x - scenario.goal.x(), t.y - scenario.goal.y());
@@ -220,6 +267,113 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   nav::PlanResult last_plan;  // the plan of the last cycle and the pose its run ended at
   size_t last_plan_at = 0;
   perception::Fog fog;
+  // the edges of the next steps up or down on the plan, measured from the views
+  std::vector<StepEdge> edges;
+  const perception::StepEdgeParams edge_params;
+  const double h_floor = planner_params.h_floor;
+  // the distance along from.yaw to the measured edge between these levels in reach, or NaN
+  auto edge_ahead = [&](const perception::Pose2& from, double from_z, double to_z) {
+    for (const StepEdge& e : edges) {
+      const double ahead = e.Ahead(from, from_z, to_z, h_floor);
+      if (ahead >= -0.05 && ahead <= limits.edge_lookahead) return ahead;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  auto measure_edges = [&]() {
+    if (last_plan.status != nav::PlanStatus::kOk) return;
+    const std::vector<nav::PathPose>& path = last_plan.path;
+    const perception::Pose2 now = ToPerception(controller.believed_pose());
+    // edges left far behind or aside (the plan went another way) are forgotten
+    edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& edge) {
+                  return (edge.point_G - Eigen::Vector2d(now.x, now.y)).norm() > 2.0;
+                }),
+                edges.end());
+    // the edge of the step into path[j] from the last view, if it is in view and not too near
+    auto from_view = [&](size_t j) {
+      const nav::PathPose& pre = path[j - 1];
+      const double e = perception::MeasureStepEdge(edge_params, last_view.labelled_G, pre.pose_G,
+                                                   pre.floor_z, path[j].floor_z);
+      if (!std::isfinite(e)) return false;
+      const Eigen::Vector2d point = Eigen::Vector2d(pre.pose_G.x, pre.pose_G.y) +
+                                    e * Eigen::Vector2d(std::cos(pre.pose_G.yaw),
+                                                        std::sin(pre.pose_G.yaw));
+      if ((point - Eigen::Vector2d(now.x, now.y)).norm() < limits.edge_min_range) return false;
+      const StepEdge measured{point, pre.pose_G.yaw, pre.floor_z, path[j].floor_z};
+      // a new measurement of an edge replaces the old one
+      edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& old) {
+                    return std::abs(old.Ahead(pre.pose_G, pre.floor_z, path[j].floor_z, h_floor) -
+                                    e) < 0.1;
+                  }),
+                  edges.end());
+      edges.push_back(measured);
+      return true;
+    };
+    double ahead = 0;  // path length from the robot
+    size_t first_step = 0;
+    for (size_t j = last_plan_at + 1; j < path.size(); ++j) {
+      ahead += std::hypot(path[j].pose_G.x - path[j - 1].pose_G.x,
+                          path[j].pose_G.y - path[j - 1].pose_G.y);
+      if (ahead > limits.edge_lookahead) break;
+      if (path[j].move != nav::Move::kStairsUp && path[j].move != nav::Move::kStairsDown) continue;
+      const bool measured = from_view(j);
+      if (first_step == 0 && !measured &&
+          !std::isfinite(edge_ahead(path[j - 1].pose_G, path[j - 1].floor_z, path[j].floor_z))) {
+        first_step = j;
+      }
+    }
+    if (first_step == 0) return;
+    // the next step is not measured yet: look at where the plan puts its riser, as the paper's
+    // robot stops to look at the stairs, while it is far enough for the body not to hide it
+    const nav::PathPose& pre = path[first_step - 1];
+    const nav::PathPose& post = path[first_step];
+    const Eigen::Vector3d to =
+        Relative(now, {0.5 * (pre.pose_G.x + post.pose_G.x), 0.5 * (pre.pose_G.y + post.pose_G.y), 0});
+    if (to.head<2>().norm() < limits.edge_min_range ||
+        to.head<2>().norm() > limits.edge_look_range) {
+      return;
+    }
+    const Eigen::Vector3d camera_R = sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).translation();
+    const double below = camera_R.z() + believed_floor_z - std::max(pre.floor_z, post.floor_z);
+    const double run_out = std::hypot(to.x() - camera_R.x(), to.y() - camera_R.y());
+    controller.MoveHead(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(below, run_out)));
+    run_controller();
+    perceive();
+    from_view(first_step);
+  };
+
+  // One step up or down from `from` (facing the step, on a floor from_z high) onto the level
+  // of `onto`, planned dx_plan forward: with the step's measured edge the heel lands
+  // heel_margin past it (stepping down, at least that far), at most edge_correction from the
+  // plan's landing, walking closer first where that is beyond the longest step.
+  auto step_onto = [&](const perception::Pose2& from, double from_z, const nav::PathPose& onto,
+                       double dx_plan) {
+    const sim::StepLimits& step_limits = controller_params.limits;
+    double dz = std::isfinite(onto.floor_z) ? onto.floor_z - believed_floor_z : 0.0;
+    dz = std::clamp(dz, -step_limits.max_climb_height, step_limits.max_climb_height);
+    double dx = dx_plan;
+    const double e = edge_ahead(from, from_z, onto.floor_z);
+    if (std::isfinite(e)) {
+      const double heel = e + humanoid.sole_half_length() + limits.heel_margin;
+      dx = std::clamp(heel, onto.floor_z > from_z ? dx - limits.edge_correction : dx,
+                      dx + limits.edge_correction);
+      // beyond the longest step: walk up to the edge first, the toes toe_margin short of it
+      const double toes = e - humanoid.sole_half_length() - limits.toe_margin;
+      const double closer = std::min(dx - step_limits.max_climb_forward, toes);
+      if (closer > 0.002) {
+        controller.Walk(closer, 0, 0);
+        dx -= closer;
+      }
+    }
+    dx = std::clamp(dx, 0.02, step_limits.max_climb_forward);
+    controller.StepOnto(dx, dz);
+    believed_floor_z += dz;
+    // the edge is behind now
+    edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& edge) {
+                  return std::isfinite(edge.Ahead(from, from_z, onto.floor_z, h_floor));
+                }),
+                edges.end());
+  };
+
   look_around();
   perception::Pose2 looked_at = ToPerception(controller.believed_pose());
   bool just_looked = true;
@@ -315,20 +469,15 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     last_plan_at = size_t(target);
     const Eigen::Vector3d delta = Relative(believed, goal_pose.pose_G);
     current_move = nav::MoveName(run.move);
-    const sim::StepLimits& step_limits = controller_params.limits;
     switch (run.move) {
       case nav::Move::kStairsUp:
-      case nav::Move::kStairsDown: {
-        double dz = std::isfinite(goal_pose.floor_z) ? goal_pose.floor_z - believed_floor_z : 0.0;
-        dz = std::clamp(dz, -step_limits.max_climb_height, step_limits.max_climb_height);
-        double dx = std::clamp(delta.x(), 0.02, step_limits.max_climb_forward);
+      case nav::Move::kStairsDown:
         if (std::abs(delta.z()) > 0.05 || std::abs(delta.y()) > 0.02) {
           controller.Walk(0, delta.y(), delta.z());  // face the step first
         }
-        controller.StepOnto(dx, dz);
-        believed_floor_z += dz;
+        step_onto({believed.x, believed.y, goal_pose.pose_G.yaw},
+                  plan.path[size_t(run.first)].floor_z, goal_pose, delta.x());
         break;
-      }
       case nav::Move::kCrawl:
         if (run.posture == nav::Posture::kCrawling && controller.mode() == sim::Mode::kStanding) {
           controller.GetDown();
@@ -346,22 +495,41 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           controller.Walk(0, 0, delta.z());
         }
         break;
-      default:
-        controller.Walk(delta.x(), delta.y(), delta.z());
+      default: {
+        // walking up to a step whose edge was measured: the toes stop toe_margin short of it,
+        // and where that is short of the plan's pose the step follows from there at once
+        double dx = delta.x();
+        const size_t next = size_t(target) + 1;
+        double e = std::numeric_limits<double>::quiet_NaN();
+        if (run.move == nav::Move::kWalk && next < plan.path.size() && dx > 0 &&
+            plan.path[next].move == nav::Move::kStairsUp && std::abs(delta.y()) < 0.02 &&
+            std::abs(delta.z()) < 0.05) {
+          e = edge_ahead(believed, goal_pose.floor_z, plan.path[next].floor_z);
+        }
+        const double toes = e - humanoid.sole_half_length() - limits.toe_margin;
+        if (!std::isfinite(e) || toes >= dx) {
+          controller.Walk(dx, delta.y(), delta.z());
+          break;
+        }
+        dx = std::max({0.0, toes, dx - limits.edge_correction});
+        if (dx > 0) {
+          controller.Walk(dx, delta.y(), delta.z());
+          ++actions[current_move];
+          run_controller();
+        }
+        current_move = nav::MoveName(nav::Move::kStairsUp);
+        last_plan_at = next;
+        const double step_dx = Relative(goal_pose.pose_G, plan.path[next].pose_G).x();
+        step_onto(ToPerception(controller.believed_pose()), goal_pose.floor_z, plan.path[next],
+                  step_dx + delta.x() - dx);
         break;
+      }
     }
     ++actions[current_move];
     run_controller();
 
     // look where the robot is going, then perceive
-    auto crawl_view = [&](double pan, double wanted_elevation) {
-      // the neck tilt that gives the wanted elevation, from the camera's kinematic pose
-      const Eigen::Vector3d forward_R =
-          sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).rotation().col(2);
-      const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
-      const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
-      return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
-    };
+    const auto& crawl_view = head_at_elevation;
     if (controller.mode() == sim::Mode::kCrawling) {
       controller.MoveHead(crawl_view(0.0, kCrawlElevations[size_t(cycle) % kCrawlElevations.size()]));
     } else {
@@ -370,6 +538,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     run_controller();
     perceive();
     just_looked = false;
+    measure_edges();
 
     // crawling, the forward views rarely hold a wall: once unsure of the heading (noisy
     // odometry only; noise-free odometry is exact), look to both sides for one

@@ -109,6 +109,7 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G);
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);
+  result.labelled_G = std::move(input.points);
   return result;
 }
 

@@ -2,10 +2,12 @@
 // meet their expectations, the same scenario and seed give the same report, and a failed
 // expectation is exit code 1.
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -83,6 +85,66 @@ TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   ta << a.rdbuf();
   tb << b.rdbuf();
   EXPECT_EQ(ta.str(), tb.str());
+}
+
+// The stair-climbing module places the feet from the measured tread edges, wherever the
+// risers lie within a 4 cm cell: after every step up or down both soles (0.055 m from the
+// origin to the heel) land with the heel at least 5 mm past the edge it crossed. Placed from the
+// map's cells alone, heels overhung step-up edges by up to 2.5 cm here.
+TEST(Mission, FeetLandPastTheTreadEdges) {
+  std::ifstream in("scenarios/stairs.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string original = text.str();
+  const std::string key = "start: [0.7, 0.0]";
+  ASSERT_NE(original.find(key), std::string::npos);
+  for (const double shift : {0.013, 0.027, 0.039}) {
+    std::string yaml = original;
+    const double start = 0.7 + shift;
+    yaml.replace(yaml.find(key), key.size(), "start: [" + std::to_string(start) + ", 0.0]");
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "fognav_stairs_shifted.yaml").string();
+    std::ofstream(path) << yaml;
+    const std::string out = TempDir("stairs_shifted");
+    std::string output;
+    ASSERT_EQ(RunMission(path, out, &output), 0) << output;
+    // the treads of scenarios/stairs.yaml: 0.25, 0.35 and 0.25 m deep, up, up, down, down
+    const std::vector<double> up = {start, start + 0.25}, down = {start + 0.6, start + 0.85};
+    std::ifstream csv(out + "/trajectory.csv");
+    std::string line;
+    std::getline(csv, line);  // header
+    struct Row {
+      int step, tick;
+      double x;
+      std::string action;
+    };
+    std::vector<Row> rows;
+    while (std::getline(csv, line)) {
+      std::stringstream fields(line);
+      std::string f[9];
+      for (std::string& field : f) std::getline(fields, field, ',');
+      rows.push_back({std::stoi(f[0]), std::stoi(f[1]), std::stod(f[2]), f[8]});
+    }
+    int checked = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const bool is_up = rows[i].action == "stairs_up", is_down = rows[i].action == "stairs_down";
+      if (!is_up && !is_down) continue;
+      // a stride's footsteps follow each other at once (0.5 s, 50 ticks); its last one ends it
+      if (i + 1 < rows.size() && rows[i + 1].action == rows[i].action &&
+          rows[i + 1].tick - rows[i].tick <= 60) {
+        continue;
+      }
+      // the edge it crossed: the last one of that kind behind the origin
+      double crossed = -1e9;
+      for (double edge : is_up ? up : down) {
+        if (edge < rows[i].x) crossed = std::max(crossed, edge);
+      }
+      EXPECT_GE(rows[i].x - 0.055 - crossed, 0.005)
+          << "shift " << shift << ", step " << rows[i].step << " " << rows[i].action;
+      ++checked;
+    }
+    EXPECT_EQ(checked, 4) << "shift " << shift;
+  }
 }
 
 TEST(Mission, AFailedExpectationIsExitCode1) {
