@@ -192,7 +192,7 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
     return NoPath(NoPathReason::kStartBlocked);
   }
   thread_local internal::SearchMemory memory;
-  internal::Lattice lattice(fog, goal_G, p, &memory, /*toward=*/false);
+  internal::Lattice lattice(fog, goal_G, p, &memory, /*toward=*/false, /*heuristic=*/false);
   int s = 0;
   if (!StateOfPose(lattice, fog.window, earlier.path[from], &s) || !lattice.Valid(s)) {
     return NoPath(NoPathReason::kStartBlocked);

@@ -136,7 +136,7 @@ void SearchMemory::Begin(int num_states) {
 }
 
 Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
-                 const PlannerParams& p, SearchMemory* memory, bool toward)
+                 const PlannerParams& p, SearchMemory* memory, bool toward, bool heuristic)
     : fog_(fog), p_(p), goal_G_(goal_G), memory_(memory ? memory : &own_memory_) {
   const perception::GridWindow& w = fog.window;
   if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
@@ -286,7 +286,11 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   ComputeCellCosts();
   memory_->Begin(NumStates());
   ComputeTerminalCosts();
-  ComputeHeuristic();
+  if (heuristic) {
+    ComputeHeuristic();
+  } else {
+    heuristic_.assign(2 * size_t(num_cells_), 0.0);
+  }
 }
 
 void Lattice::ComputePermissions() {

@@ -71,10 +71,11 @@ class Lattice {
   // Prepares per-cell permissions, costs, footprints and the heuristic for one query, using
   // `memory` (or memory of its own when null) for the per-state arrays. With `toward`, every
   // cell ends the search at exit_factor times its distance to the goal, as when the goal lies
-  // outside the window (GoalInWindow() is then false). Aborts if the FOG's arrays do not match
-  // its window.
+  // outside the window (GoalInWindow() is then false). Without `heuristic` the heuristic is 0
+  // everywhere (for walking a given path, which needs none). Aborts if the FOG's arrays do not
+  // match its window.
   Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
-          SearchMemory* memory = nullptr, bool toward = false);
+          SearchMemory* memory = nullptr, bool toward = false, bool heuristic = true);
   SearchMemory& memory() { return *memory_; }
   uint32_t generation() const { return memory_->generation; }
 
