@@ -202,8 +202,12 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
                     lattice.FloorHeight(lattice.CellOfState(s))});
   internal::Successor succ[internal::kMaxSuccessors];
   for (size_t k = from + 1; k < earlier.path.size(); ++k) {
-    int t = 0;
-    if (!StateOfPose(lattice, fog.window, earlier.path[k], &t)) break;  // beyond the window
+    int t = 0, ix = 0, iy = 0;
+    fog.window.CellOf(earlier.path[k].pose_G.x, earlier.path[k].pose_G.y, &ix, &iy);
+    if (!fog.window.Contains(ix, iy)) break;  // the rest lies beyond the window
+    if (!StateOfPose(lattice, fog.window, earlier.path[k], &t)) {
+      return NoPath(NoPathReason::kGoalEnclosed);  // not a lattice pose
+    }
     const int count = lattice.Successors(s, succ);
     const internal::Successor* edge = std::find_if(succ, succ + count, [&](const auto& e) {
       return e.state == t && e.move == earlier.path[k].move;

@@ -9,17 +9,24 @@ namespace fognav::perception {
 
 double MeasureStepEdge(const StepEdgeParams& params, const std::vector<LabelledPoint>& points_G,
                        const Pose2& reference_G, double floor_z, double target_z) {
+  if (!std::isfinite(floor_z) || !std::isfinite(target_z) || target_z == floor_z) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
   const bool up = target_z > floor_z;
   const double tread = up ? target_z : floor_z;
   const double c = std::cos(reference_G.yaw), s = std::sin(reference_G.yaw);
-  std::vector<double> along, others;  // points on the tread's level, and all others
+  std::vector<double> along, lower;  // points on the tread's level, and points below it
   for (const LabelledPoint& q : points_G) {
     const double dx = double(q.p_G.x()) - reference_G.x, dy = double(q.p_G.y()) - reference_G.y;
     const double u = c * dx + s * dy, v = -s * dx + c * dy;
     if (std::abs(v) > params.half_width || u < -params.behind || u > params.reach) continue;
     const bool on_tread =
         std::isfinite(q.h) && std::abs(double(q.h) - tread) <= params.level_tolerance;
-    (on_tread ? along : others).push_back(u);
+    if (on_tread) {
+      along.push_back(u);
+    } else if (double(q.p_G.z()) < tread - params.level_tolerance) {
+      lower.push_back(u);
+    }
   }
   if (int(along.size()) < std::max(params.min_points, 1)) {
     return std::numeric_limits<double>::quiet_NaN();
@@ -56,7 +63,7 @@ double MeasureStepEdge(const StepEdgeParams& params, const std::vector<LabelledP
   }
   // the view must show what lies beyond the tread there (the riser or the floor before it
   // stepping up, the lower level stepping down): else the tread ends at the image's border
-  const bool seen_beyond = std::any_of(others.begin(), others.end(), [&](double u) {
+  const bool seen_beyond = std::any_of(lower.begin(), lower.end(), [&](double u) {
     return up ? u < edge && u >= edge - params.beyond : u > edge && u <= edge + params.beyond;
   });
   return seen_beyond ? edge : std::numeric_limits<double>::quiet_NaN();

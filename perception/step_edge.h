@@ -24,9 +24,9 @@ struct StepEdgeParams {
   double density_share = 0.25;    // a bin belongs to the tread if it holds this share of the
                                   // median points per non-empty bin (sparser bins are smear)
   int min_points = 40;            // fewer points of the tread in the band: no measurement
-  // points off the tread's level must lie within this distance beyond the edge (before it
-  // stepping up, after it stepping down; a drop's shadow is a few centimetres), so that the
-  // border of the image is not taken for an edge
+  // points lower than the tread (the riser or the floor before it stepping up, the lower level
+  // stepping down) must lie within this distance beyond the edge (a drop's shadow is a few
+  // centimetres), so that the border of the image is not taken for an edge
   double beyond = 0.06;
 };
 
@@ -35,7 +35,8 @@ struct StepEdgeParams {
 // points of one view (grid frame): stepping up (target_z > floor_z), where the points on
 // target_z in the band begin along the heading; stepping down, where those on floor_z end;
 // in both cases at the first dense bin, counted from that side. NaN when the band holds fewer
-// than min_points of them, or no other point within `beyond` on the far side of the edge.
+// than min_points of them, when no point lower than the tread lies within `beyond` on the far
+// side of the edge, or when a level is not finite or both are the same.
 double MeasureStepEdge(const StepEdgeParams& params, const std::vector<LabelledPoint>& points_G,
                        const Pose2& reference_G, double floor_z, double target_z);
 

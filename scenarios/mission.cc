@@ -80,8 +80,8 @@ struct StepEdge {
   // distance along `yaw` from `from` to the edge, if the edge is the one between these levels
   // (within h_floor) and was measured along about this heading; NaN otherwise
   double Ahead(const perception::Pose2& from, double from_z, double to_z, double h_floor) const {
-    if (std::abs(from_z - floor_z) > h_floor || std::abs(to_z - target_z) > h_floor ||
-        std::abs(WrapAngle(from.yaw - yaw)) > 0.2) {
+    if (!(std::abs(from_z - floor_z) <= h_floor && std::abs(to_z - target_z) <= h_floor &&
+          std::abs(WrapAngle(from.yaw - yaw)) <= 0.2)) {
       return std::numeric_limits<double>::quiet_NaN();
     }
     const Eigen::Vector2d d = point_G - Eigen::Vector2d(from.x, from.y);
@@ -271,13 +271,21 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::vector<StepEdge> edges;
   const perception::StepEdgeParams edge_params;
   const double h_floor = planner_params.h_floor;
-  // the distance along from.yaw to the measured edge between these levels in reach, or NaN
-  auto edge_ahead = [&](const perception::Pose2& from, double from_z, double to_z) {
+  // a step's edge lies within the longest step (plus the walk closer) of the pose before it
+  const double step_reach = controller_params.limits.max_climb_forward + limits.edge_correction;
+  // the distance along from.yaw to the nearest measured edge between these levels within
+  // `reach` ahead (or 5 cm behind), or NaN
+  auto edge_ahead = [&](const perception::Pose2& from, double from_z, double to_z,
+                        double reach) {
+    double nearest = std::numeric_limits<double>::quiet_NaN();
     for (const StepEdge& e : edges) {
       const double ahead = e.Ahead(from, from_z, to_z, h_floor);
-      if (ahead >= -0.05 && ahead <= limits.edge_lookahead) return ahead;
+      if (ahead >= -0.05 && ahead <= reach &&
+          (std::isnan(nearest) || std::abs(ahead) < std::abs(nearest))) {
+        nearest = ahead;
+      }
     }
-    return std::numeric_limits<double>::quiet_NaN();
+    return nearest;
   };
   auto measure_edges = [&]() {
     if (last_plan.status != nav::PlanStatus::kOk) return;
@@ -317,7 +325,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       if (path[j].move != nav::Move::kStairsUp && path[j].move != nav::Move::kStairsDown) continue;
       const bool measured = from_view(j);
       if (first_step == 0 && !measured &&
-          !std::isfinite(edge_ahead(path[j - 1].pose_G, path[j - 1].floor_z, path[j].floor_z))) {
+          !std::isfinite(edge_ahead(path[j - 1].pose_G, path[j - 1].floor_z, path[j].floor_z,
+                                    step_reach))) {
         first_step = j;
       }
     }
@@ -351,7 +360,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     double dz = std::isfinite(onto.floor_z) ? onto.floor_z - believed_floor_z : 0.0;
     dz = std::clamp(dz, -step_limits.max_climb_height, step_limits.max_climb_height);
     double dx = dx_plan;
-    const double e = edge_ahead(from, from_z, onto.floor_z);
+    const double e = edge_ahead(from, from_z, onto.floor_z, step_reach);
     if (std::isfinite(e)) {
       const double heel = e + humanoid.sole_half_length() + limits.heel_margin;
       dx = std::clamp(heel, onto.floor_z > from_z ? dx - limits.edge_correction : dx,
@@ -360,16 +369,22 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       const double toes = e - humanoid.sole_half_length() - limits.toe_margin;
       const double closer = std::min(dx - step_limits.max_climb_forward, toes);
       if (closer > 0.002) {
+        const std::string step_move = current_move;
+        current_move = nav::MoveName(nav::Move::kWalk);
         controller.Walk(closer, 0, 0);
+        ++actions[current_move];
+        run_controller();
+        current_move = step_move;
         dx -= closer;
       }
     }
     dx = std::clamp(dx, 0.02, step_limits.max_climb_forward);
     controller.StepOnto(dx, dz);
     believed_floor_z += dz;
-    // the edge is behind now
+    // the edge stepped over is behind now
     edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& edge) {
-                  return std::isfinite(edge.Ahead(from, from_z, onto.floor_z, h_floor));
+                  const double ahead = edge.Ahead(from, from_z, onto.floor_z, h_floor);
+                  return ahead >= -0.05 && ahead <= step_reach;
                 }),
                 edges.end());
   };
@@ -496,15 +511,17 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         }
         break;
       default: {
-        // walking up to a step whose edge was measured: the toes stop toe_margin short of it,
-        // and where that is short of the plan's pose the step follows from there at once
+        // walking up to a step whose edge was measured: the toes stop toe_margin short of it
+        // (the walk is cut by at most edge_correction), and where that is short of the plan's
+        // pose the step follows from there at once
         double dx = delta.x();
         const size_t next = size_t(target) + 1;
         double e = std::numeric_limits<double>::quiet_NaN();
         if (run.move == nav::Move::kWalk && next < plan.path.size() && dx > 0 &&
             plan.path[next].move == nav::Move::kStairsUp && std::abs(delta.y()) < 0.02 &&
             std::abs(delta.z()) < 0.05) {
-          e = edge_ahead(believed, goal_pose.floor_z, plan.path[next].floor_z);
+          e = edge_ahead(believed, goal_pose.floor_z, plan.path[next].floor_z,
+                         dx + step_reach);
         }
         const double toes = e - humanoid.sole_half_length() - limits.toe_margin;
         if (!std::isfinite(e) || toes >= dx) {

@@ -17,10 +17,15 @@ using internal::AlignedBox;
 
 const CameraIntrinsics kK = internal::MakeIntrinsics(176, 144, 45.0);
 
-// Treads up from `edge` along the robot's heading yaw (treads 0.25 m deep, 3 and 6 cm high),
+// Treads from `edge` along the robot's heading yaw (by default 0.25 m deep, 3 and 6 cm high),
 // seen by the head camera 0.5 m up at `robot`, looking down at the floor 0.4 m ahead (the view's
 // lower edge meets the floor 0.18 m ahead, its upper edge 0.78 m ahead).
-std::vector<LabelledPoint> StairsSeenFrom(const Pose2& robot, double edge, double yaw) {
+struct Tread {
+  double depth, height;
+};
+std::vector<LabelledPoint> StairsSeenFrom(const Pose2& robot, double edge, double yaw,
+                                          const std::vector<Tread>& treads = {{0.25, 0.03},
+                                                                              {0.25, 0.06}}) {
   // build the stairs in a frame along the heading, then rotate them into the grid frame
   const Eigen::Isometry3d X_GS = Planar({robot.x, robot.y, yaw});
   auto box = [&](double x0, double x1, double z1) {
@@ -28,8 +33,12 @@ std::vector<LabelledPoint> StairsSeenFrom(const Pose2& robot, double edge, doubl
     b.X_FB = X_GS * b.X_FB;
     return b;
   };
-  const std::vector<OrientedBox> world = {box(-3, 3, 0.0), box(edge, edge + 0.25, 0.03),
-                                          box(edge + 0.25, edge + 0.5, 0.06)};
+  std::vector<OrientedBox> world = {box(-3, 3, 0.0)};
+  double x = edge;
+  for (const Tread& t : treads) {
+    world.push_back(box(x, x + t.depth, t.height));
+    x += t.depth;
+  }
   const Eigen::Vector3d eye = X_GS * Eigen::Vector3d(0, 0, 0.5);
   const Eigen::Vector3d at = X_GS * Eigen::Vector3d(0.4, 0, 0.0);
   const Eigen::Isometry3d X_GC = internal::LookAt(eye, at);
@@ -48,9 +57,13 @@ TEST(StepEdge, FindsWhereTheUpperTreadBeginsAnywhereInACell) {
     EXPECT_NEAR(MeasureStepEdge({}, points, robot, 0.0, 0.03), edge, 0.005) << i;
     const Pose2 pre{robot.x + 0.14 * std::cos(yaw), robot.y + 0.14 * std::sin(yaw), yaw};
     EXPECT_NEAR(MeasureStepEdge({}, points, pre, 0.0, 0.03), edge - 0.14, 0.005) << i;
-    // the second riser, from the first tread, and the first tread's end stepping down to it
+    // the second riser, from the first tread
     EXPECT_NEAR(MeasureStepEdge({}, points, pre, 0.03, 0.06), edge + 0.25 - 0.14, 0.005) << i;
-    EXPECT_NEAR(MeasureStepEdge({}, points, pre, 0.03, 0.0), edge + 0.25 - 0.14, 0.005) << i;
+    // where a single 0.15 m tread ends, stepping down to the floor beyond it
+    const std::vector<LabelledPoint> block = StairsSeenFrom(robot, edge, yaw, {{0.15, 0.03}});
+    EXPECT_NEAR(MeasureStepEdge({}, block, pre, 0.03, 0.0), edge + 0.15 - 0.14, 0.005) << i;
+    // beyond the second tread's riser the floor is higher, not lower: no step down there
+    EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, pre, 0.03, 0.0))) << i;
   }
 }
 
@@ -64,6 +77,9 @@ TEST(StepEdge, NoMeasurementWithoutTheTreadInTheBand) {
   EXPECT_TRUE(std::isnan(MeasureStepEdge(near, points, robot, 0.0, 0.03)));
   EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, {0, 0, M_PI}, 0.0, 0.03)));
   EXPECT_TRUE(std::isnan(MeasureStepEdge({}, {}, robot, 0.0, 0.03)));
+  // levels that are not finite, or the same
+  EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, robot, 0.0, std::nan(""))));
+  EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, robot, 0.03, 0.03)));
 }
 
 // A tread that runs out of the view's lower edge has no edge in the view.
@@ -71,9 +87,11 @@ TEST(StepEdge, TheImageBorderIsNoEdge) {
   const Pose2 robot{0, 0, 0};
   std::vector<LabelledPoint> points = StairsSeenFrom(robot, 0.10, 0.0);  // view begins at 0.18
   EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, robot, 0.0, 0.03)));
-  // nor does the end of a tread that leaves the view's upper edge (0.78 m ahead)
+  // nor does the end of a tread that leaves the view's upper edge (0.73 m ahead on the tread),
+  // looked at from a reference whose band holds it
   points = StairsSeenFrom(robot, 0.60, 0.0);
-  EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, robot, 0.03, 0.0)));
+  const Pose2 on_tread{0.3, 0, 0};
+  EXPECT_TRUE(std::isnan(MeasureStepEdge({}, points, on_tread, 0.03, 0.0)));
 }
 
 TEST(StepEdge, StrayPointsBeforeTheEdgeDoNotMoveIt) {
