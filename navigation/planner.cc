@@ -15,6 +15,12 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// per-state scratch arrays of this thread, reused by every query (one query at a time)
+internal::SearchMemory& ThreadMemory() {
+  thread_local internal::SearchMemory memory;
+  return memory;
+}
+
 PlanResult NoPath(NoPathReason reason, int expanded = 0) {
   PlanResult r;
   r.status = PlanStatus::kNoPath;
@@ -64,9 +70,8 @@ PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
                   const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture,
                   bool toward) {
   // per-state arrays and the open list are reused between calls on this thread
-  thread_local internal::SearchMemory thread_memory;
   thread_local std::vector<internal::OpenEntry> thread_heap;
-  internal::SearchMemory& memory = thread_memory;
+  internal::SearchMemory& memory = ThreadMemory();
   internal::Lattice lattice(fog, goal_G, p, &memory, toward);
 
   // where the search may start and end
@@ -170,12 +175,10 @@ PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
   return r;
 }
 
-// the lattice state of a path pose: its cell, its heading if it is a lattice heading, its posture
-bool StateOfPose(const internal::Lattice& lattice, const perception::GridWindow& window,
-                 const PathPose& q, int* state) {
-  int ix = 0, iy = 0;
-  window.CellOf(q.pose_G.x, q.pose_G.y, &ix, &iy);
-  if (!window.Contains(ix, iy)) return false;
+// the lattice state of a path pose in window cell (ix, iy): its heading if it is a lattice
+// heading (else false), its posture
+bool StateOfPose(const internal::Lattice& lattice, int ix, int iy, const PathPose& q,
+                 int* state) {
   const int heading = internal::NearestHeading(q.pose_G.yaw);
   const double off = q.pose_G.yaw - internal::HeadingYaw(heading);
   if (std::abs(std::atan2(std::sin(off), std::cos(off))) > 1e-3) return false;
@@ -191,10 +194,13 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   if (earlier.status != PlanStatus::kOk || from >= earlier.path.size()) {
     return NoPath(NoPathReason::kStartBlocked);
   }
-  thread_local internal::SearchMemory memory;
-  internal::Lattice lattice(fog, goal_G, p, &memory, /*toward=*/false, /*heuristic=*/false);
-  int s = 0;
-  if (!StateOfPose(lattice, fog.window, earlier.path[from], &s) || !lattice.Valid(s)) {
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), /*toward=*/false,
+                            /*heuristic=*/false);
+  const perception::GridWindow& w = fog.window;
+  int s = 0, ix = 0, iy = 0;
+  w.CellOf(earlier.path[from].pose_G.x, earlier.path[from].pose_G.y, &ix, &iy);
+  if (!w.Contains(ix, iy) || !StateOfPose(lattice, ix, iy, earlier.path[from], &s) ||
+      !lattice.Valid(s)) {
     return NoPath(NoPathReason::kStartBlocked);
   }
   PlanResult r;
@@ -202,10 +208,10 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
                     lattice.FloorHeight(lattice.CellOfState(s))});
   internal::Successor succ[internal::kMaxSuccessors];
   for (size_t k = from + 1; k < earlier.path.size(); ++k) {
-    int t = 0, ix = 0, iy = 0;
-    fog.window.CellOf(earlier.path[k].pose_G.x, earlier.path[k].pose_G.y, &ix, &iy);
-    if (!fog.window.Contains(ix, iy)) break;  // the rest lies beyond the window
-    if (!StateOfPose(lattice, fog.window, earlier.path[k], &t)) {
+    int t = 0;
+    w.CellOf(earlier.path[k].pose_G.x, earlier.path[k].pose_G.y, &ix, &iy);
+    if (!w.Contains(ix, iy)) break;  // the rest lies beyond the window
+    if (!StateOfPose(lattice, ix, iy, earlier.path[k], &t)) {
       return NoPath(NoPathReason::kGoalEnclosed);  // not a lattice pose
     }
     const int count = lattice.Successors(s, succ);

@@ -237,8 +237,7 @@ PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start
 // cut where it leaves the window). kNoPath when that pose or one of the moves is no longer
 // allowed, or the path ends outside a goal region in the window. A robot that re-plans as it
 // learns the map keeps to its plan while this costs about what a new plan does, so that two
-// nearly equal ways do not take turns. Keeps scratch arrays of its own per thread, as Plan
-// does (about 8 MB for a 100 x 100 window).
+// nearly equal ways do not take turns. Uses Plan's per-thread scratch arrays.
 PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, size_t from,
                         const perception::Pose2& start_G, const Eigen::Vector2d& goal_G,
                         const PlannerParams& p);

@@ -108,12 +108,12 @@ const std::vector<double> kCrawlElevations = {0.15, -0.6};
 nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& start,
                            const Scenario& scenario, const nav::PlannerParams& params,
                            nav::Posture posture, nav::PlannerParams* used = nullptr) {
-  nav::PlannerParams wider = params;
   if (used) *used = params;
   nav::PlanResult plan = nav::Plan(fog, start, scenario.goal, params, posture);
   if (plan.status == nav::PlanStatus::kOk || plan.reason != nav::NoPathReason::kGoalBlocked) {
     return plan;
   }
+  nav::PlannerParams wider = params;
   wider.goal_tolerance = std::max(params.goal_tolerance,
                                   scenario.goal_tolerance - 0.5 * fog.window.resolution);
   if (used) *used = wider;
@@ -273,6 +273,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   const double h_floor = planner_params.h_floor;
   // a step's edge lies within the longest step (plus the walk closer) of the pose before it
   const double step_reach = controller_params.limits.max_climb_forward + limits.edge_correction;
+  auto forget_edges = [&](auto&& which) {
+    edges.erase(std::remove_if(edges.begin(), edges.end(), which), edges.end());
+  };
   // the distance along from.yaw to the nearest measured edge between these levels within
   // `reach` ahead (or 5 cm behind), or NaN
   auto edge_ahead = [&](const perception::Pose2& from, double from_z, double to_z,
@@ -292,10 +295,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const std::vector<nav::PathPose>& path = last_plan.path;
     const perception::Pose2 now = ToPerception(controller.believed_pose());
     // edges left far behind or aside (the plan went another way) are forgotten
-    edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& edge) {
-                  return (edge.point_G - Eigen::Vector2d(now.x, now.y)).norm() > 2.0;
-                }),
-                edges.end());
+    forget_edges([&](const StepEdge& edge) {
+      return (edge.point_G - Eigen::Vector2d(now.x, now.y)).norm() > 2.0;
+    });
     // the edge of the step into path[j] from the last view, if it is in view and not too near
     auto from_view = [&](size_t j) {
       const nav::PathPose& pre = path[j - 1];
@@ -308,11 +310,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       if ((point - Eigen::Vector2d(now.x, now.y)).norm() < limits.edge_min_range) return false;
       const StepEdge measured{point, pre.pose_G.yaw, pre.floor_z, path[j].floor_z};
       // a new measurement of an edge replaces the old one
-      edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& old) {
-                    return std::abs(old.Ahead(pre.pose_G, pre.floor_z, path[j].floor_z, h_floor) -
-                                    e) < 0.1;
-                  }),
-                  edges.end());
+      forget_edges([&](const StepEdge& old) {
+        return std::abs(old.Ahead(pre.pose_G, pre.floor_z, path[j].floor_z, h_floor) - e) < 0.1;
+      });
       edges.push_back(measured);
       return true;
     };
@@ -382,11 +382,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     controller.StepOnto(dx, dz);
     believed_floor_z += dz;
     // the edge stepped over is behind now
-    edges.erase(std::remove_if(edges.begin(), edges.end(), [&](const StepEdge& edge) {
-                  const double ahead = edge.Ahead(from, from_z, onto.floor_z, h_floor);
-                  return ahead >= -0.05 && ahead <= step_reach;
-                }),
-                edges.end());
+    forget_edges([&](const StepEdge& edge) {
+      const double ahead = edge.Ahead(from, from_z, onto.floor_z, h_floor);
+      return ahead >= -0.05 && ahead <= step_reach;
+    });
   };
 
   look_around();
