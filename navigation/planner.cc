@@ -177,8 +177,7 @@ PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
 
 // the lattice state of a path pose in window cell (ix, iy): its heading if it is a lattice
 // heading (else false), its posture
-bool StateOfPose(const internal::Lattice& lattice, int ix, int iy, const PathPose& q,
-                 int* state) {
+bool StateOfPose(const internal::Lattice& lattice, int ix, int iy, const PathPose& q, int* state) {
   const int heading = internal::NearestHeading(q.pose_G.yaw);
   const double off = q.pose_G.yaw - internal::HeadingYaw(heading);
   if (std::abs(std::atan2(std::sin(off), std::cos(off))) > 1e-3) return false;
