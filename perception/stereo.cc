@@ -108,6 +108,29 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
                                      p.speckle_window_size, p.speckle_range, mode);
   cv::Mat disp16;
   sgbm->compute(l, r, disp16);
+  if (p.left_right_check) {
+    // the right image as the reference: flipped, the right image becomes a left one and
+    // disparities keep their sign; right column ur is column w - 1 - ur of the flipped pair
+    cv::Mat lf, rf, disp16_right;
+    cv::flip(ToMat(right), lf, 1);
+    cv::flip(ToMat(left), rf, 1);
+    if (pad > 0) {
+      cv::copyMakeBorder(lf, lf, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+      cv::copyMakeBorder(rf, rf, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+    }
+    sgbm->compute(lf, rf, disp16_right);
+    const double tolerance16 = 16.0 * p.left_right_tolerance;
+    for (int v = 0; v < h; ++v) {
+      int16_t* row = disp16.ptr<int16_t>(v) + pad;
+      const int16_t* row_right = disp16_right.ptr<int16_t>(v) + pad;
+      for (int u = 0; u < w; ++u) {
+        if (row[u] <= 0) continue;
+        const int ur = u - int(std::lround(row[u] / 16.0));
+        const int raw_right = ur >= 0 ? row_right[w - 1 - ur] : 0;
+        if (raw_right <= 0 || std::abs(raw_right - row[u]) > tolerance16) row[u] = -1;
+      }
+    }
+  }
 
   // sub-pixel refinement on the grey images (SGBM's interpolation locks towards whole pixels)
   cv::Mat gl, gr, gr_dx;

@@ -97,6 +97,27 @@ TEST(Stereo, RefinementRemovesPixelLocking) {
   EXPECT_LT(median_error(StereoParams()), 0.5 * median_error(sgbm_only));
 }
 
+TEST(Stereo, LeftRightCheckRejectsMatchesBetweenUnrelatedImages) {
+  // the right image shows another part of the wall (the camera 0.3 m higher): no pixel has a
+  // true match, so every point is a mismatch
+  const auto K = SceneIntrinsics(176, 144);
+  RgbImage left, right, unused;
+  RenderStereoPair(Wall(1.0), K, SceneCamera(0, 0, 0, 0), &left, &unused);
+  RenderStereoPair(Wall(1.0), K, SceneCamera(0, 0, 0.3, 0), &unused, &right);
+  auto valid_share = [&](const StereoParams& p) {
+    const PointImage points = StereoPointImage(left, right, K, p);
+    int valid = 0;
+    for (const Eigen::Vector3f& q : points.points) valid += PointImage::Valid(q);
+    return double(valid) / double(points.points.size());
+  };
+  StereoParams unchecked;
+  unchecked.left_right_check = false;
+  const double with_check = valid_share(StereoParams()), without = valid_share(unchecked);
+  std::printf("unrelated pair: %.1f %% of pixels with points, %.1f %% without the check\n",
+              100 * with_check, 100 * without);
+  EXPECT_LT(with_check, 0.5 * without);
+}
+
 TEST(Stereo, UntexturedPairGivesNoPoints) {
   const auto K = SceneIntrinsics(176, 144);
   const RgbImage flat(176, 144, Rgb{128, 128, 128});
