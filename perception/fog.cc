@@ -90,6 +90,31 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       }
     }
   }
+  if (params.fog.require_known_neighbourhood) {
+    // unknown cells (and places beyond the window) in U and in U grown by one cell
+    const std::vector<CellType> first = fog.type;
+    const int r = params.fog.neighbourhood_radius, outer = r + 1;
+    auto unknown = [&](int jx, int jy) {
+      return !w.Contains(jx, jy) || first[size_t(w.Index(jx, jy))] == CellType::kUnknown;
+    };
+    for (int iy = 0; iy < w.size_y; ++iy) {
+      for (int ix = 0; ix < w.size_x; ++ix) {
+        const size_t i = size_t(w.Index(ix, iy));
+        if (first[i] != CellType::kFloor && first[i] != CellType::kStairs) continue;
+        int in_u = 0, around = 0;
+        for (int jy = iy - outer; jy <= iy + outer; ++jy) {
+          for (int jx = ix - outer; jx <= ix + outer; ++jx) {
+            if (!unknown(jx, jy)) continue;
+            ++around;
+            in_u += std::abs(jx - ix) <= r && std::abs(jy - iy) <= r;
+          }
+        }
+        if (in_u == 0 || around < params.fog.min_unknown_around) continue;
+        fog.type[i] = CellType::kUnknown;
+        fog.height[i] = -std::numeric_limits<float>::infinity();
+      }
+    }
+  }
   return fog;
 }
 

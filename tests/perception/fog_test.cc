@@ -192,6 +192,31 @@ TEST(Fog, ThinPostIsObstacleWithTheTopOfItsHighestLayer) {
 }
 
 // Index in the state's 2D arrays of the cell holding grid-frame (x, y).
+TEST(Fog, RimOfATopWhoseFarSideIsUnseenIsUnknownNotFloor) {
+  // a 0.3 m wall, broad enough to be floor on top, seen from one side only: the floor behind
+  // it lies in its shadow, so eq. (24) cannot see the drop at its far rim
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.32, 0.52, -0.5, 0.5, 0.0, 0.3)};
+  std::vector<Eigen::Isometry3d> cameras;
+  for (double y : {-0.3, 0.0, 0.3}) {
+    for (double x : {0.1, 0.42, 0.8}) cameras.push_back(LookAt({-0.5, y, 0.5}, {x, y, 0.0}));
+  }
+  MapParams params;
+  const Fog fog = Perceive(world, cameras, params);
+  EXPECT_EQ(TypeAt(fog, 0.50, 0.02), CellType::kUnknown);  // far rim
+  EXPECT_EQ(TypeAt(fog, 0.54, 0.02), CellType::kUnknown);  // in the shadow
+  EXPECT_EQ(TypeAt(fog, 0.42, 0.02), CellType::kFloor);    // the middle of the top
+  EXPECT_NEAR(HeightAt(fog, 0.42, 0.02), 0.3, 1e-4);
+  EXPECT_EQ(TypeAt(fog, 0.34, 0.02), CellType::kBorder);  // near rim
+  ExpectMatchesTruth(fog, world, params);
+
+  // the paper: the far rim is floor, where the truth (a drop behind it) is border
+  params.fog.require_known_neighbourhood = false;
+  const Fog paper = Perceive(world, cameras, params);
+  EXPECT_EQ(TypeAt(paper, 0.50, 0.02), CellType::kFloor);
+  const Fog truth = GroundTruthFog(world, paper.window, params.fog);
+  EXPECT_EQ(TypeAt(truth, 0.50, 0.02), CellType::kBorder);
+}
+
 size_t CellIndex(const MapState& state, double x, double y) {
   int ix, iy;
   state.window.CellOf(x, y, &ix, &iy);
