@@ -95,11 +95,13 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
 
   // semi-global matching, optionally on images padded on the left
   const int pad = p.pad_left ? p.min_disparity + p.num_disparities : 0;
-  cv::Mat l = ToMat(left), r = ToMat(right);
-  if (pad > 0) {
-    cv::copyMakeBorder(l, l, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-    cv::copyMakeBorder(r, r, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-  }
+  const cv::Mat left_mat = ToMat(left), right_mat = ToMat(right);
+  auto padded = [pad](const cv::Mat& image) {
+    cv::Mat out = image;
+    if (pad > 0) cv::copyMakeBorder(image, out, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+    return out;
+  };
+  const cv::Mat l = padded(left_mat), r = padded(right_mat);
   const int area = p.block_size * p.block_size * 3;
   const int mode = p.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM;
   auto sgbm = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size,
@@ -112,13 +114,9 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
     // the right image as the reference: flipped, the right image becomes a left one and
     // disparities keep their sign; right column ur is column w - 1 - ur of the flipped pair
     cv::Mat lf, rf, disp16_right;
-    cv::flip(ToMat(right), lf, 1);
-    cv::flip(ToMat(left), rf, 1);
-    if (pad > 0) {
-      cv::copyMakeBorder(lf, lf, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-      cv::copyMakeBorder(rf, rf, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-    }
-    sgbm->compute(lf, rf, disp16_right);
+    cv::flip(right_mat, lf, 1);
+    cv::flip(left_mat, rf, 1);
+    sgbm->compute(padded(lf), padded(rf), disp16_right);
     const double tolerance16 = 16.0 * p.left_right_tolerance;
     for (int v = 0; v < h; ++v) {
       int16_t* row = disp16.ptr<int16_t>(v) + pad;
