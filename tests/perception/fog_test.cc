@@ -191,7 +191,6 @@ TEST(Fog, ThinPostIsObstacleWithTheTopOfItsHighestLayer) {
   ExpectMatchesTruth(fog, world, {});
 }
 
-// Index in the state's 2D arrays of the cell holding grid-frame (x, y).
 TEST(Fog, RimOfATopWhoseFarSideIsUnseenIsUnknownNotFloor) {
   // a 0.3 m wall, broad enough to be floor on top, seen from one side only: the floor behind
   // it lies in its shadow, so eq. (24) cannot see the drop at its far rim
@@ -217,6 +216,7 @@ TEST(Fog, RimOfATopWhoseFarSideIsUnseenIsUnknownNotFloor) {
   EXPECT_EQ(TypeAt(truth, 0.50, 0.02), CellType::kBorder);
 }
 
+// Index in the state's 2D arrays of the cell holding grid-frame (x, y).
 size_t CellIndex(const MapState& state, double x, double y) {
   int ix, iy;
   state.window.CellOf(x, y, &ix, &iy);
