@@ -12,6 +12,90 @@
 #include "perception/mapping.h"
 
 namespace fognav::perception {
+namespace {
+
+constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+// FogParams::infer_tops: per cell the floor height inferred from the grid for a top that no
+// plane covered, -infinity elsewhere. `highest` is the highest known floor in U(x, y).
+std::vector<float> InferTops(const MapParams& params, const MapState& state,
+                             const std::vector<float>& highest) {
+  const GridWindow& w = state.window;
+  const FogParams& p = params.fog;
+  const int nz = state.size_z;
+  const float res = float(w.resolution), z_min = float(state.z_min);
+  const float l_occ = internal::LogOdds(params.grid.p_occ);
+  const float l_free = -l_occ;
+  std::vector<int> top(size_t(w.NumCells()), -1);  // highest occupied layer of a candidate
+  for (size_t i = 0; i < top.size(); ++i) {
+    // the floor the solid stands on: the cell's own or its neighbours'
+    const float base = std::max(state.floor[i], highest[i]);
+    if (base == kNegInf) continue;
+    const float* column = state.log_odds.data() + i * size_t(nz);
+    int k = nz - 1;
+    while (k >= 0 && !(column[k] > l_occ)) --k;
+    if (k < 0 || k == nz - 1) continue;  // nothing, or what lies above the grid is unknown
+    const float z_top = z_min + float(k + 1) * res;
+    if (z_top > float(p.camera_height) || z_top - res - base <= float(p.h_stairs)) continue;
+    // a solid from the floor up: no layer between them seen free (a table's top is no top:
+    // free space lies under it)
+    const int first = std::max(0, internal::FastFloor((base + float(p.obstacle_margin) - z_min) / res));
+    bool solid = true;
+    for (int iz = first; iz < k && solid; ++iz) solid = !(column[iz] < l_free);
+    if (solid) top[i] = k;
+  }
+  std::vector<float> out(top.size(), kNegInf);
+  std::vector<uint8_t> seen(top.size(), 0);
+  std::vector<int> patch, open;
+  for (int seed = 0; seed < int(top.size()); ++seed) {
+    if (top[size_t(seed)] < 0 || seen[size_t(seed)]) continue;
+    patch.clear();
+    open.assign(1, seed);
+    seen[size_t(seed)] = 1;
+    while (!open.empty()) {
+      const int c = open.back();
+      open.pop_back();
+      patch.push_back(c);
+      const int cx = c % w.size_x, cy = c / w.size_x;
+      for (int jy = cy - 1; jy <= cy + 1; ++jy) {
+        for (int jx = cx - 1; jx <= cx + 1; ++jx) {
+          if (!w.Contains(jx, jy)) continue;
+          const int j = w.Index(jx, jy);
+          if (top[size_t(j)] < 0 || seen[size_t(j)] ||
+              std::abs(top[size_t(j)] - top[size_t(c)]) > 1) {
+            continue;
+          }
+          seen[size_t(j)] = 1;
+          open.push_back(j);
+        }
+      }
+    }
+    // flat: a rough top (posts of several heights) is an obstacle, as in the ground truth
+    const auto [lo, hi] = std::minmax_element(patch.begin(), patch.end(), [&](int u, int v) {
+      return top[size_t(u)] < top[size_t(v)];
+    });
+    const int k_lo = top[size_t(*lo)], k_hi = top[size_t(*hi)];
+    if (k_hi - k_lo > 1) continue;
+    // a sole large: extents from the spread of the cell centres, as LabelPoints measures planes
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (int c : patch) {
+      const double x = c % w.size_x, y = c / w.size_x;
+      sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+    }
+    const double n = double(patch.size()), mx = sx / n, my = sy / n;
+    const double a = sxx / n - mx * mx, b = syy / n - my * my, cxy = sxy / n - mx * my;
+    const double root = std::sqrt(0.25 * (a - b) * (a - b) + cxy * cxy);
+    const double length = std::sqrt(12.0 * std::max(0.0, 0.5 * (a + b) + root)) * res;
+    const double width = std::sqrt(12.0 * std::max(0.0, 0.5 * (a + b) - root)) * res;
+    if (length < p.min_floor_length || width < p.min_floor_width) continue;
+    // one height for the flat top: the middle of its layer, or the boundary of its two
+    const float h = z_min + (float(k_lo) + (k_hi > k_lo ? 1.0f : 0.5f)) * res;
+    for (int c : patch) out[size_t(c)] = h;
+  }
+  return out;
+}
+
+}  // namespace
 
 Fog ComputeFog(const MapParams& params, const MapState& state) {
   Fog fog(state.window);
@@ -41,39 +125,66 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   }
   std::vector<float> dh, highest;
   internal::FloorChange(w, *floor, params.fog.neighbourhood_radius, &dh, &highest);
+  // inferred tops enter eq. (24) for every cell; the obstacle threshold keeps `highest`
+  std::vector<float> tops;
+  if (params.fog.infer_tops) {
+    tops = InferTops(params, state, highest);
+    if (std::any_of(tops.begin(), tops.end(), [](float t) { return t != kNegInf; })) {
+      std::vector<float> with_tops = *floor, unused;
+      for (size_t i = 0; i < tops.size(); ++i) {
+        if (tops[i] != kNegInf) with_tops[i] = tops[i];
+      }
+      internal::FloorChange(w, with_tops, params.fog.neighbourhood_radius, &dh, &unused);
+    } else {
+      tops.clear();
+    }
+  }
   fog.headroom_seen.assign(fog.type.size(), 0);
   const float h_tunnel = float(params.fog.h_tunnel), h_robot = float(params.fog.h_robot);
 
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
-      internal::CellQuantities q;
-      q.f = state.floor[i];
-      q.dh = dh[i];
-      // eq. (22, 23): highest and lowest occupied layers above the floor, from a bit mask of
-      // the occupied layers of the column
-      float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
-      // a cell without floor beside a known floor (the strip behind a step down that the eyes
-      // cannot see): what lies no higher than the neighbouring floor + margin is no obstacle
-      if (params.fog.ignore_low_unknown && q.f == -std::numeric_limits<float>::infinity() &&
-          highest[i] != -std::numeric_limits<float>::infinity()) {
-        z_lo = highest[i] + float(params.fog.obstacle_margin);
-      }
       const float* column = state.log_odds.data() + i * nz;
-      uint64_t occupied = 0;
-      for (int iz = 0; iz < nz; ++iz) occupied |= uint64_t(column[iz] > l_occ) << iz;
-      // layers whose bottom is at or above z_lo
-      const int first = z_lo == -std::numeric_limits<float>::infinity()
-                            ? 0
-                            : std::clamp(-internal::FastFloor(-(z_lo - z_min) * inv_res + 1e-4f),
-                                         0, 64);
-      if (first < 64) occupied &= ~uint64_t(0) << first; else occupied = 0;
-      if (occupied != 0) {
-        const int lowest = __builtin_ctzll(occupied), top = 63 - __builtin_clzll(occupied);
-        q.c = z_min + float(lowest) * res;
-        q.o = z_min + float(top + 1) * res;
-      }
+      uint64_t all_occupied = 0;
+      for (int iz = 0; iz < nz; ++iz) all_occupied |= uint64_t(column[iz] > l_occ) << iz;
+      // eq. (22, 23): highest and lowest occupied layers above the floor f, from a bit mask of
+      // the occupied layers of the column
+      auto quantities = [&](float f) {
+        internal::CellQuantities q;
+        q.f = f;
+        q.dh = dh[i];
+        float z_lo = internal::ObstacleThreshold(params.fog, q.f, highest[i]);
+        // a cell without floor beside a known floor (the strip behind a step down that the eyes
+        // cannot see): what lies no higher than the neighbouring floor + margin is no obstacle
+        if (params.fog.ignore_low_unknown && q.f == kNegInf && highest[i] != kNegInf) {
+          z_lo = highest[i] + float(params.fog.obstacle_margin);
+        }
+        // layers whose bottom is at or above z_lo
+        const int first =
+            z_lo == kNegInf
+                ? 0
+                : std::clamp(-internal::FastFloor(-(z_lo - z_min) * inv_res + 1e-4f), 0, 64);
+        const uint64_t occupied = first < 64 ? all_occupied & (~uint64_t(0) << first) : 0;
+        if (occupied != 0) {
+          const int lowest = __builtin_ctzll(occupied), top = 63 - __builtin_clzll(occupied);
+          q.c = z_min + float(lowest) * res;
+          q.o = z_min + float(top + 1) * res;
+        }
+        return q;
+      };
+      internal::CellQuantities q = quantities(state.floor[i]);
       CellType t = internal::Classify(params.fog, q);
+      if (!tops.empty() && tops[i] != kNegInf) {
+        // an inferred top makes its cell border, or floor amid tops of its own layer; its
+        // height is too rough to tell stairs
+        const internal::CellQuantities q_top = quantities(tops[i]);
+        const CellType t_top = internal::Classify(params.fog, q_top);
+        if (t_top == CellType::kBorder || t_top == CellType::kFloor) {
+          q = q_top;
+          t = t_top;
+        }
+      }
       // an unreliable height is no floor information yet: obstacles above it still count
       if (unreliable(i) && t != CellType::kObstacle && t != CellType::kTunnel) {
         t = CellType::kUnknown;

@@ -208,8 +208,23 @@ struct FogParams {
   // sweep this took FOG accuracy from 0.90 to 0.96 with ideal depth, 0.78 to 0.83 with stereo.
   bool require_known_neighbourhood = true;
   int min_unknown_around = 5;  // of the (2r+3)^2 cells; 1 = any unknown cell in U
-  // Ground truth only: floor candidates are upward-facing horizontal box tops no higher than
-  // this (the standing camera height) and at least a sole large (LabelParams' sizes).
+  // Extension: tops that no plane covered. A wall's 0.1 m top seen from a metre is a strip of
+  // two or three pixels, too thin for scan-line grouping, so its cells hold occupied layers over
+  // the floor (or over none) and eq. (22) makes them obstacles, where the ground truth (floor
+  // candidates as below) makes them border. If set, a cell whose highest occupied layer ends no
+  // higher than camera_height, below the grid's top layer and more than h_stairs + one layer
+  // above the highest floor of the cell and U(x, y), with no layer between them seen free (a
+  // solid standing on the floor, not a table's top), is part of a top. An 8-connected patch of
+  // such cells (neighbours' tops within one layer) that is flat (its tops span at most two
+  // layers: a rough top of posts stays an obstacle) and at least a sole large
+  // (min_floor_length x min_floor_width, from the spread of the cell centres) counts in eq.
+  // (24) with one floor height: the middle of its layer, or the boundary of its two (a top on
+  // a layer boundary). Its cells are then border or floor if eq. (24) makes them so (the
+  // height is too rough to tell stairs) and as before otherwise; the neighbours' floor change
+  // sees the drop, and occupied layers count for them as without it.
+  bool infer_tops = true;
+  // Floor candidates no higher than this (the standing camera height) and at least a sole
+  // large (LabelParams' sizes); GroundTruthFog's floor candidates and infer_tops.
   double camera_height = 0.50;
   double min_floor_length = 0.10;
   double min_floor_width = 0.06;
