@@ -11,6 +11,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -48,6 +49,10 @@ struct ExecutionLimits {
   double crawl = 0.12;
   // without a path to the goal, the robot approaches it if that gains at least this much
   double min_approach = 0.1;
+  // without a path even after looking around, the robot drops its maps and looks around once
+  // more from where it stands (views from poses that odometry noise misplaced may have closed
+  // a narrow way), unless it did so within this distance (metres)
+  double fresh_look_distance = 0.5;
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
@@ -391,6 +396,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   look_around();
   perception::Pose2 looked_at = ToPerception(controller.believed_pose());
   bool just_looked = true;
+  std::optional<perception::Pose2> fresh_at;  // where the maps were last dropped
   while (true) {
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
@@ -449,6 +455,15 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
           (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
            scenario.goal).norm() < to_goal - limits.min_approach;
+      if (!nearer && (!fresh_at || std::hypot(believed.x - fresh_at->x, believed.y - fresh_at->y) >
+                                       limits.fresh_look_distance)) {
+        maps = perception::MapState();
+        look_around();
+        looked_at = believed;
+        fresh_at = believed;
+        just_looked = true;
+        continue;
+      }
       if (!nearer) {
         failure = "no_path";
         // a plan that ends where it starts: the best reachable state toward the goal is here

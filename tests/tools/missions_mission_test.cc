@@ -67,7 +67,8 @@ TEST_P(Suite, MeetsItsExpectations) {
 INSTANTIATE_TEST_SUITE_P(Missions, Suite,
                          ::testing::Values("stairs_and_table", "obstacles", "narrow_gap", "stairs",
                                            "table", "low_table", "drop_off", "enclosed", "slalom",
-                                           "turn_first", "noisy_odometry", "goal_at_wall"));
+                                           "turn_first", "noisy_odometry", "goal_at_wall",
+                                           "noisy_gap"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
