@@ -106,6 +106,35 @@ const std::vector<sim::HeadAngles> kCycleViews = {
 // overhead, down to see the floor ahead
 const std::vector<double> kCrawlElevations = {0.15, -0.6};
 
+// The floor under the standing robot is known without looking: it stands on it. The body hides
+// it from the eyes, so after the maps were dropped, or where the robot came by a way it did not
+// look at, unknown cells lay around its feet and barred the moves the eyes do not look along (a
+// side-step out of a narrow gap's mouth). Unknown cells that the standing footprint covers
+// (centres inside it grown by half a cell) become floor at the believed floor height.
+void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& robot, double floor_z,
+                        perception::Fog* fog) {
+  const perception::GridWindow& w = fog->window;
+  const double along = 0.5 * p.depth + p.margin + 0.5 * w.resolution;
+  const double across = 0.5 * p.shoulder_width + p.margin + 0.5 * w.resolution;
+  const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
+  const double reach = std::hypot(along, across);
+  int ix0, iy0, ix1, iy1;
+  w.CellOf(robot.x - reach, robot.y - reach, &ix0, &iy0);
+  w.CellOf(robot.x + reach, robot.y + reach, &ix1, &iy1);
+  for (int iy = std::max(0, iy0); iy <= std::min(w.size_y - 1, iy1); ++iy) {
+    for (int ix = std::max(0, ix0); ix <= std::min(w.size_x - 1, ix1); ++ix) {
+      const Eigen::Vector2d d = w.CellCenter(ix, iy) - Eigen::Vector2d(robot.x, robot.y);
+      if (std::abs(c * d.x() + s * d.y()) > along || std::abs(-s * d.x() + c * d.y()) > across) {
+        continue;
+      }
+      const size_t i = size_t(w.Index(ix, iy));
+      if (fog->type[i] != perception::CellType::kUnknown) continue;
+      fog->type[i] = perception::CellType::kFloor;
+      fog->height[i] = float(floor_z);
+    }
+  }
+}
+
 // Plans to within params' tolerance (half the scenario's, so the robot ends inside it despite
 // odometry and cells); where no pose lies that near (a goal at the foot of a wall), to any pose
 // within the scenario's tolerance, with half a cell to spare for the cell centres.
@@ -414,6 +443,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // plan from where odometry says the robot is
     const perception::Pose2 believed = ToPerception(controller.believed_pose());
     fog = perception::ComputeFog(perception_params.map, maps);
+    if (controller.mode() == sim::Mode::kStanding) {
+      MarkFloorUnderFeet(planner_params, believed, believed_floor_z, &fog);
+    }
     auto start = Clock::now();
     const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
                                      ? nav::Posture::kCrawling
