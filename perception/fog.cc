@@ -39,7 +39,8 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
     if (z_top > float(p.camera_height) || z_top - res - base <= float(p.h_stairs)) continue;
     // a solid from the floor up: no layer between them seen free (a table's top is no top:
     // free space lies under it)
-    const int first = std::max(0, internal::FastFloor((base + float(p.obstacle_margin) - z_min) / res));
+    const int first =
+        std::max(0, internal::FastFloor((base + float(p.obstacle_margin) - z_min) / res));
     bool solid = true;
     for (int iz = first; iz < k && solid; ++iz) solid = !(column[iz] < l_free);
     if (solid) top[i] = k;
@@ -71,9 +72,8 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
       }
     }
     // flat: a rough top (posts of several heights) is an obstacle, as in the ground truth
-    const auto [lo, hi] = std::minmax_element(patch.begin(), patch.end(), [&](int u, int v) {
-      return top[size_t(u)] < top[size_t(v)];
-    });
+    const auto [lo, hi] = std::minmax_element(
+        patch.begin(), patch.end(), [&](int u, int v) { return top[size_t(u)] < top[size_t(v)]; });
     const int k_lo = top[size_t(*lo)], k_hi = top[size_t(*hi)];
     if (k_hi - k_lo > 1) continue;
     // a sole large: extents from the spread of the cell centres, as LabelPoints measures planes

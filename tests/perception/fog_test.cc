@@ -264,10 +264,12 @@ TEST(Fog, TableSeenFromBelowStaysTunnelWithInferredTops) {
   // a table whose top is below the eyes, seen only from crawling height: its columns hold the
   // floor, free space and the occupied underside, no solid from the floor up, so no top is
   // inferred and eq. (23) makes them tunnel
-  const std::vector<OrientedBox> world = {
-      Floor(), AlignedBox(-0.3, 0.3, -0.3, 0.3, 0.40, 0.44),
-      AlignedBox(-0.3, -0.26, -0.3, -0.26, 0.0, 0.40), AlignedBox(0.26, 0.3, -0.3, -0.26, 0.0, 0.40),
-      AlignedBox(-0.3, -0.26, 0.26, 0.3, 0.0, 0.40), AlignedBox(0.26, 0.3, 0.26, 0.3, 0.0, 0.40)};
+  const std::vector<OrientedBox> world = {Floor(),
+                                          AlignedBox(-0.3, 0.3, -0.3, 0.3, 0.40, 0.44),
+                                          AlignedBox(-0.3, -0.26, -0.3, -0.26, 0.0, 0.40),
+                                          AlignedBox(0.26, 0.3, -0.3, -0.26, 0.0, 0.40),
+                                          AlignedBox(-0.3, -0.26, 0.26, 0.3, 0.0, 0.40),
+                                          AlignedBox(0.26, 0.3, 0.26, 0.3, 0.0, 0.40)};
   const Fog fog = Perceive(world, Around({0.0, 0.0, 0.3}, 0.9, 0.2));
   for (double x = -0.18; x <= 0.18; x += 0.04) {
     for (double y = -0.18; y <= 0.18; y += 0.04) {
