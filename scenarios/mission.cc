@@ -112,9 +112,9 @@ const std::vector<sim::HeadAngles> kCycleViews = {
 const std::vector<double> kCrawlElevations = {0.15, -0.6};
 
 // The floor under the standing robot is known without looking: it stands on it. The body hides
-// it from the eyes, so after the maps were dropped, or where the robot came by a way it did not
-// look at, unknown cells lay around its feet and barred the moves the eyes do not look along (a
-// side-step out of a narrow gap's mouth). Unknown cells that the standing footprint covers
+// it from the eyes, so where the robot came by a way it did not look at, unknown cells lay
+// around its feet and barred the moves the eyes do not look along (a side-step out of a narrow
+// gap's mouth). Unknown cells that the standing footprint covers
 // (centres inside it grown by half a cell) become floor at the believed floor height.
 void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& robot, double floor_z,
                         perception::Fog* fog) {
