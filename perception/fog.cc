@@ -17,30 +17,31 @@ namespace {
 constexpr float kNegInf = -std::numeric_limits<float>::infinity();
 
 // FogParams::infer_tops: per cell the floor height inferred from the grid for a top that no
-// plane covered, -infinity elsewhere. `highest` is the highest known floor in U(x, y).
+// plane covered, -infinity elsewhere. `highest` is the highest known floor in U(x, y),
+// `occupied` the bit mask of each column's occupied layers.
 std::vector<float> InferTops(const MapParams& params, const MapState& state,
-                             const std::vector<float>& highest) {
+                             const std::vector<float>& highest,
+                             const std::vector<uint64_t>& occupied) {
   const GridWindow& w = state.window;
   const FogParams& p = params.fog;
   const int nz = state.size_z;
   const float res = float(w.resolution), z_min = float(state.z_min);
-  const float l_occ = internal::LogOdds(params.grid.p_occ);
-  const float l_free = -l_occ;
+  const float l_free = -internal::LogOdds(params.grid.p_occ);
   std::vector<int> top(size_t(w.NumCells()), -1);  // highest occupied layer of a candidate
   for (size_t i = 0; i < top.size(); ++i) {
     // the floor the solid stands on: the cell's own or its neighbours'
     const float base = std::max(state.floor[i], highest[i]);
-    if (base == kNegInf) continue;
-    const float* column = state.log_odds.data() + i * size_t(nz);
-    int k = nz - 1;
-    while (k >= 0 && !(column[k] > l_occ)) --k;
-    if (k < 0 || k == nz - 1) continue;  // nothing, or what lies above the grid is unknown
+    if (base == kNegInf || occupied[i] == 0) continue;
+    // the highest occupied layer; above the grid's top layer nothing is known
+    const int k = 63 - __builtin_clzll(occupied[i]);
+    if (k == nz - 1) continue;
     const float z_top = z_min + float(k + 1) * res;
     if (z_top > float(p.camera_height) || z_top - res - base <= float(p.h_stairs)) continue;
     // a solid from the floor up: no layer between them seen free (a table's top is no top:
     // free space lies under it)
     const int first =
         std::max(0, internal::FastFloor((base + float(p.obstacle_margin) - z_min) / res));
+    const float* column = state.log_odds.data() + i * size_t(nz);
     bool solid = true;
     for (int iz = first; iz < k && solid; ++iz) solid = !(column[iz] < l_free);
     if (solid) top[i] = k;
@@ -79,15 +80,13 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
     // a sole large: extents from the spread of the cell centres, as LabelPoints measures planes
     double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
     for (int c : patch) {
-      const double x = c % w.size_x, y = c / w.size_x;
+      const double x = (c % w.size_x) * w.resolution, y = (c / w.size_x) * w.resolution;
       sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
     }
-    const double n = double(patch.size()), mx = sx / n, my = sy / n;
-    const double a = sxx / n - mx * mx, b = syy / n - my * my, cxy = sxy / n - mx * my;
-    const double root = std::sqrt(0.25 * (a - b) * (a - b) + cxy * cxy);
-    const double length = std::sqrt(12.0 * std::max(0.0, 0.5 * (a + b) + root)) * res;
-    const double width = std::sqrt(12.0 * std::max(0.0, 0.5 * (a + b) - root)) * res;
-    if (length < p.min_floor_length || width < p.min_floor_width) continue;
+    if (!internal::SpansAtLeast(double(patch.size()), sx, sy, sxx, syy, sxy, p.min_floor_length,
+                                p.min_floor_width)) {
+      continue;
+    }
     // one height for the flat top: the middle of its layer, or the boundary of its two
     const float h = z_min + (float(k_lo) + (k_hi > k_lo ? 1.0f : 0.5f)) * res;
     for (int c : patch) out[size_t(c)] = h;
@@ -125,10 +124,16 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   }
   std::vector<float> dh, highest;
   internal::FloorChange(w, *floor, params.fog.neighbourhood_radius, &dh, &highest);
+  // bit mask of the occupied layers of each column
+  std::vector<uint64_t> occupied(fog.type.size(), 0);
+  for (size_t i = 0; i < occupied.size(); ++i) {
+    const float* column = state.log_odds.data() + i * nz;
+    for (int iz = 0; iz < nz; ++iz) occupied[i] |= uint64_t(column[iz] > l_occ) << iz;
+  }
   // inferred tops enter eq. (24) for every cell; the obstacle threshold keeps `highest`
   std::vector<float> tops;
   if (params.fog.infer_tops) {
-    tops = InferTops(params, state, highest);
+    tops = InferTops(params, state, highest, occupied);
     if (std::any_of(tops.begin(), tops.end(), [](float t) { return t != kNegInf; })) {
       std::vector<float> with_tops = *floor, unused;
       for (size_t i = 0; i < tops.size(); ++i) {
@@ -146,10 +151,8 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
       const float* column = state.log_odds.data() + i * nz;
-      uint64_t all_occupied = 0;
-      for (int iz = 0; iz < nz; ++iz) all_occupied |= uint64_t(column[iz] > l_occ) << iz;
-      // eq. (22, 23): highest and lowest occupied layers above the floor f, from a bit mask of
-      // the occupied layers of the column
+      // eq. (22, 23): highest and lowest occupied layers above the floor f, from the column's
+      // bit mask
       auto quantities = [&](float f) {
         internal::CellQuantities q;
         q.f = f;
@@ -165,9 +168,9 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
             z_lo == kNegInf
                 ? 0
                 : std::clamp(-internal::FastFloor(-(z_lo - z_min) * inv_res + 1e-4f), 0, 64);
-        const uint64_t occupied = first < 64 ? all_occupied & (~uint64_t(0) << first) : 0;
-        if (occupied != 0) {
-          const int lowest = __builtin_ctzll(occupied), top = 63 - __builtin_clzll(occupied);
+        const uint64_t above = first < 64 ? occupied[i] & (~uint64_t(0) << first) : 0;
+        if (above != 0) {
+          const int lowest = __builtin_ctzll(above), top = 63 - __builtin_clzll(above);
           q.c = z_min + float(lowest) * res;
           q.o = z_min + float(top + 1) * res;
         }

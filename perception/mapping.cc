@@ -156,14 +156,10 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     if (n_G.norm() < 1e-9 || std::abs(n_G.z()) < cos_tilt * n_G.norm()) continue;
     const double h = m.sz / m.n;
     if (h >= X_GC.translation().z()) continue;
-    const double mx = m.sx / m.n, my = m.sy / m.n;
-    Eigen::Matrix2d cov;
-    cov << m.sxx / m.n - mx * mx, m.sxy / m.n - mx * my, m.sxy / m.n - mx * my,
-        m.syy / m.n - my * my;
-    const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvalues();
-    const double width = std::sqrt(12.0 * std::max(0.0, ev(0)));
-    const double length = std::sqrt(12.0 * std::max(0.0, ev(1)));
-    if (length < params.min_floor_length || width < params.min_floor_width) continue;
+    if (!internal::SpansAtLeast(m.n, m.sx, m.sy, m.sxx, m.syy, m.sxy, params.min_floor_length,
+                                params.min_floor_width)) {
+      continue;
+    }
     plane_h[size_t(k)] = float(h);
     plane_sigma[size_t(k)] = float(std::max(planes.planes[size_t(k)].rms, params.min_height_sigma));
   }
