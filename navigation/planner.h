@@ -79,6 +79,13 @@ struct PlannerParams {
   double crawl_width = 0.26;     // crawling extent across the heading
   double crawl_offset = 0.10;    // centre of the crawling extent ahead of the robot's origin
   double margin = 0.015;         // safety margin added on every side of both footprints
+  // Standing, the floor under the footprint grown by only this much must lie on the origin's
+  // level; in the outer ring up to `margin` a tread's (up to h_stairs off) may lie too, but no
+  // higher or lower floor (a block's top, a drop). With the full margin the footprint's cells
+  // at the lattice's 26.6 degree headings span 0.16 m across a riser turned a little from
+  // them, more than a step reaches, and stairs turned by 20-35 degrees had no level pose
+  // within a step of each other.
+  double level_margin = 0.01;
   // Standing, the body reaches further than the soles: the knees come forward as a foot lifts
   // (the shipped humanoid, measured over side-steps and turns in tests/sim: from 0.055 m
   // behind its origin to 0.09 m ahead). A move that ends with an obstacle or tunnel cell, or a
@@ -106,6 +113,9 @@ struct PlannerParams {
   // longest step up or down, from standing pose to standing pose (the controller's
   // max_climb_forward), metres
   double max_step_length = 0.16;
+  // a step up or down may end this far beside its heading (the lead foot steps aside as it
+  // climbs; sim::StepLimits::max_climb_sideways), metres
+  double max_step_sideways = 0.03;
   // a step up or down is taken facing it: the heading may differ from the direction of the
   // floor's height gradient there by at most this angle, radians
   double max_stairs_heading_error = 0.35;

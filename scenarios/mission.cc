@@ -390,11 +390,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   };
 
   // One step up or down from `from` (facing the step, on a floor from_z high) onto the level
-  // of `onto`, planned dx_plan forward: with the step's measured edge the heel lands
-  // heel_margin past it (stepping down, at least that far), at most edge_correction from the
-  // plan's landing, walking closer first where that is beyond the longest step.
+  // of `onto`, planned dx_plan forward and dy_plan to the left: with the step's measured edge
+  // the heel lands heel_margin past it (stepping down, at least that far), at most
+  // edge_correction from the plan's landing, walking closer first where that is beyond the
+  // longest step.
   auto step_onto = [&](const perception::Pose2& from, double from_z, const nav::PathPose& onto,
-                       double dx_plan) {
+                       double dx_plan, double dy_plan) {
     const sim::StepLimits& step_limits = controller_params.limits;
     double dz = std::isfinite(onto.floor_z) ? onto.floor_z - believed_floor_z : 0.0;
     dz = std::clamp(dz, -step_limits.max_climb_height, step_limits.max_climb_height);
@@ -418,7 +419,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
     }
     dx = std::clamp(dx, 0.02, step_limits.max_climb_forward);
-    controller.StepOnto(dx, dz);
+    controller.StepOnto(
+        dx, dz,
+        std::clamp(dy_plan, -step_limits.max_climb_sideways, step_limits.max_climb_sideways));
     believed_floor_z += dz;
     // the edge stepped over is behind now
     forget_edges([&](const StepEdge& edge) {
@@ -537,13 +540,18 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     current_move = nav::MoveName(run.move);
     switch (run.move) {
       case nav::Move::kStairsUp:
-      case nav::Move::kStairsDown:
-        if (std::abs(delta.z()) > 0.05 || std::abs(delta.y()) > 0.02) {
-          controller.Walk(0, delta.y(), delta.z());  // face the step first
+      case nav::Move::kStairsDown: {
+        // face the step first; a step aside within the climb's own limit is taken with it
+        const bool aside =
+            std::abs(delta.y()) <= controller_params.limits.max_climb_sideways + 0.005;
+        if (std::abs(delta.z()) > 0.05 || !aside) {
+          controller.Walk(0, aside ? 0.0 : delta.y(), delta.z());
         }
         step_onto({believed.x, believed.y, goal_pose.pose_G.yaw},
-                  plan.path[size_t(run.first)].floor_z, goal_pose, delta.x());
+                  plan.path[size_t(run.first)].floor_z, goal_pose, delta.x(),
+                  aside ? delta.y() : 0.0);
         break;
+      }
       case nav::Move::kCrawl:
         if (run.posture == nav::Posture::kCrawling && controller.mode() == sim::Mode::kStanding) {
           controller.GetDown();
@@ -587,9 +595,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         }
         current_move = nav::MoveName(nav::Move::kStairsUp);
         last_plan_at = next;
-        const double step_dx = Relative(goal_pose.pose_G, plan.path[next].pose_G).x();
+        const Eigen::Vector3d step = Relative(goal_pose.pose_G, plan.path[next].pose_G);
         step_onto(ToPerception(controller.believed_pose()), goal_pose.floor_z, plan.path[next],
-                  step_dx + delta.x() - dx);
+                  step.x() + delta.x() - dx, step.y());
         break;
       }
     }

@@ -133,14 +133,13 @@ FootPlacement Controller::NoisyFoot(const GroundFrame& frame, int side) {
   return f;
 }
 
-void Controller::PushStride(double dx, double dy, double dyaw, double dz, bool climb) {
+void Controller::PushStride(double dx, double dy, double dyaw, double dz) {
   const GroundFrame from = FeetFrame(plan_.feet);
   GroundFrame to = from.Then(dx, dy, dyaw);
   to.z = plan_.feet[0].p.z() + dz;
   // the foot on the side of the motion leads
   int lead = 0;
   if (dy < -1e-9 || (std::abs(dy) <= 1e-9 && dyaw < -1e-9)) lead = 1;
-  if (climb) lead = 0;
   const int step_ticks = std::max(1, int(std::lround(params_.step_time * params_.control_rate_hz)));
   for (int k = 0; k < 2; ++k) {
     const int side = k == 0 ? lead : 1 - lead;
@@ -166,20 +165,22 @@ void Controller::Walk(double dx, double dy, double dyaw) {
                                       l.max_turn);
   for (int i = 1; i <= n; ++i) {
     const Pose2 delta = StrideDelta(dx, dy, dyaw, i, n);
-    PushStride(delta.x, delta.y, delta.yaw, 0, false);
+    PushStride(delta.x, delta.y, delta.yaw, 0);
   }
 }
 
-void Controller::StepOnto(double dx, double dz) {
+void Controller::StepOnto(double dx, double dz, double dy) {
   RequireMode(Mode::kStanding, "StepOnto");
   const StepLimits& l = params_.limits;
-  if (dx < 0 || dx > l.max_climb_forward + 1e-9 || std::abs(dz) > l.max_climb_height + 1e-9) {
+  if (!(dx >= 0 && dx <= l.max_climb_forward + 1e-9 && std::abs(dz) <= l.max_climb_height + 1e-9 &&
+        std::abs(dy) <= l.max_climb_sideways + 1e-9)) {
     throw std::invalid_argument("StepOnto(" + std::to_string(dx) + ", " + std::to_string(dz) +
-                                "): forward must be in [0, " + std::to_string(l.max_climb_forward) +
-                                "] m and |height| at most " + std::to_string(l.max_climb_height) +
-                                " m");
+                                ", " + std::to_string(dy) + "): forward must be in [0, " +
+                                std::to_string(l.max_climb_forward) + "] m, |height| at most " +
+                                std::to_string(l.max_climb_height) + " m and |sideways| at most " +
+                                std::to_string(l.max_climb_sideways) + " m");
   }
-  PushStride(dx, 0, 0, dz, true);
+  PushStride(dx, dy, 0, dz);
 }
 
 void Controller::MoveHead(const HeadAngles& target) {

@@ -40,6 +40,7 @@ struct StepLimits {
   double max_turn = 0.35;      // rad per stride (20 deg)
   double max_climb_forward = 0.16;  // m, forward length of a step onto a tread (StepOnto)
   double max_climb_height = 0.065;  // m, rise or drop of a tread (StepOnto)
+  double max_climb_sideways = 0.03;  // m, part of a step onto a tread across the heading
   double max_crawl_forward = 0.06;  // m per crawl cycle (negative: backward, half of it)
   double max_crawl_turn = 0.25;     // rad per crawl cycle
 };
@@ -111,10 +112,11 @@ class Controller {
   // Motion commands, queued. Displacements are in the robot frame at the start of the command.
   // Walk splits (dx, dy, dyaw) into equal strides within the limits; walking on level ground.
   void Walk(double dx, double dy, double dyaw);
-  // One stride of dx forward onto a surface dz higher (negative: down) than the current one,
-  // swinging the feet clear of the riser; dz comes from perception (tread planes).
-  // Throws std::invalid_argument beyond max_climb_forward / max_climb_height.
-  void StepOnto(double dx, double dz);
+  // One stride of dx forward (and dy to the left) onto a surface dz higher (negative: down)
+  // than the current one, swinging the feet clear of the riser; dz comes from perception
+  // (tread planes). Throws std::invalid_argument beyond max_climb_forward / max_climb_height /
+  // max_climb_sideways.
+  void StepOnto(double dx, double dz, double dy = 0.0);
   // Kneels down onto hands and knees (crawl posture, 0.28 m tall).
   void GetDown();
   // Crawls (dx, dyaw) in cycles within the crawl limits.
@@ -191,7 +193,7 @@ class Controller {
   };
 
   void RequireMode(Mode mode, const char* command) const;
-  void PushStride(double dx, double dy, double dyaw, double dz, bool climb);
+  void PushStride(double dx, double dy, double dyaw, double dz);
   internal::FootPlacement NoisyFoot(const internal::GroundFrame& frame, int side);
   Posture StandingPosture(const std::array<internal::FootPlacement, 2>& feet) const;
   Posture Evaluate(const Segment& seg, double u, HeadAngles* head) const;

@@ -154,6 +154,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   }
   if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
   if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
+  if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
+  if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
+    Die("Plan: level_margin must be in [0, margin]");
+  }
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
@@ -201,6 +205,15 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
       std::sort(cells.begin(), cells.end(), [](const CellStep& l, const CellStep& r) {
         return l.dx * l.dx + l.dy * l.dy > r.dx * r.dx + r.dy * r.dy;
       });
+      if (q == 1) continue;
+      const double la = 0.5 * p.depth + p.level_margin,
+                   lb = 0.5 * p.shoulder_width + p.level_margin;
+      level_cell_[k].clear();
+      for (const CellStep& o : cells) {
+        const double u = (o.dx * c + o.dy * s) * w.resolution;
+        const double v = (-o.dx * s + o.dy * c) * w.resolution;
+        level_cell_[k].push_back(std::abs(u) <= la + kEps && std::abs(v) <= lb + kEps);
+      }
     }
   }
 
@@ -257,27 +270,52 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     }
   }
 
-  // cells swept by the standing footprint in a step up or down of m lattice steps: centres in
-  // the rectangle from the start footprint's back edge to the end footprint's front edge
+  // climbs: every cell offset ahead within max_step_length whose part across the heading is at
+  // most max_step_sideways (so at 26.6 and 45 degrees, whose lattice steps of 0.089 and 0.057 m
+  // do not add up to a step over a riser within the limit, the robot still climbs on its
+  // heading), with the cells the standing footprint sweeps: centres in the rectangle from the
+  // start footprint's back edge to the end footprint's front edge, as wide as the two side by side
+  const int reach_end = int(std::ceil(p.max_step_length / w.resolution + kEps));
   for (int k = 0; k < kNumHeadings; ++k) {
     const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
     const double a = half_along[0], b = half_across[0];
-    max_jump_[k] = int(std::floor(p.max_step_length / step_length_[k] + kEps));
-    swept_[k].assign(size_t(max_jump_[k]), {});
-    for (int m = 1; m <= max_jump_[k]; ++m) {
-      const double length = m * step_length_[k];
-      const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
-      std::vector<CellStep>& cells = swept_[k][size_t(m - 1)];
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const double u = (dx * c + dy * s) * w.resolution;
-          const double v = (-dx * s + dy * c) * w.resolution;
-          if (u >= -a - kEps && u <= length + a + kEps && std::abs(v) <= b + kEps) {
-            cells.push_back({dx, dy});
+    climbs_[k].clear();
+    for (int ey = -reach_end; ey <= reach_end; ++ey) {
+      for (int ex = -reach_end; ex <= reach_end; ++ex) {
+        const double along = (ex * c + ey * s) * w.resolution;
+        const double across = (-ex * s + ey * c) * w.resolution;
+        const double length = std::hypot(along, across);
+        if (along <= kEps || length > p.max_step_length + kEps ||
+            std::abs(across) > p.max_step_sideways + kEps) {
+          continue;
+        }
+        Climb climb;
+        climb.to = {ex, ey};
+        climb.length = length;
+        climb.across = across;
+        const double v_lo = std::min(0.0, across) - b, v_hi = std::max(0.0, across) + b;
+        const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
+        for (int dy = -reach; dy <= reach; ++dy) {
+          for (int dx = -reach; dx <= reach; ++dx) {
+            const double u = (dx * c + dy * s) * w.resolution;
+            const double v = (-dx * s + dy * c) * w.resolution;
+            if (u >= -a - kEps && u <= along + a + kEps && v >= v_lo - kEps && v <= v_hi + kEps) {
+              climb.swept.push_back({dx, dy});
+            }
           }
         }
+        const int n = std::max(std::abs(ex), std::abs(ey));
+        for (int j = 1; j <= n; ++j) {
+          climb.line.push_back(
+              {int(std::lround(double(j * ex) / n)), int(std::lround(double(j * ey) / n))});
+        }
+        climbs_[k].push_back(std::move(climb));
       }
     }
+    std::stable_sort(climbs_[k].begin(), climbs_[k].end(), [](const Climb& x, const Climb& y) {
+      return x.length < y.length - kEps ||
+             (x.length <= y.length + kEps && std::abs(x.across) < std::abs(y.across) - kEps);
+    });
   }
 
   ComputeFloorHeights();
@@ -531,7 +569,8 @@ void Lattice::ComputeHeuristic() {
   // steps between cells whose floor heights differ by at most h_stairs + 2 h_floor. Every 3D
   // edge maps to a relaxed path that costs no more (a step up or down of m lattice steps to the
   // m relaxed steps along its line, whose cells its sweep keeps open and within h_floor of its
-  // two levels), so this is admissible and consistent.
+  // two levels; one a little across its heading to a relaxed edge of its own at the stairs
+  // factor without cell costs), so this is admissible and consistent.
   const perception::GridWindow& w = fog_.window;
   const size_t n = size_t(num_cells_);
   std::vector<uint8_t> open(2 * n);
@@ -550,6 +589,18 @@ void Lattice::ComputeHeuristic() {
   // cell offsets of the 16 steps
   int step_offset[kNumHeadings];
   for (int k = 0; k < kNumHeadings; ++k) step_offset[k] = kSteps[k].dy * w.size_x + kSteps[k].dx;
+
+  // the climbs across their heading, which no line of lattice steps follows, in both directions
+  std::vector<std::pair<CellStep, double>> aside;  // offset, length in metres
+  for (int k = 0; k < kNumHeadings; ++k) {
+    for (const Climb& c : climbs_[k]) {
+      if (std::abs(c.across) <= kEps) continue;
+      const bool known = std::any_of(aside.begin(), aside.end(), [&](const auto& e) {
+        return e.first.dx == c.to.dx && e.first.dy == c.to.dy;
+      });
+      if (!known) aside.push_back({c.to, c.length});
+    }
+  }
 
   // Dijkstra from every end node at once; a node is queued while its stamp is 1, done at 2
   heuristic_.assign(2 * n, kInf);
@@ -601,6 +652,19 @@ void Lattice::ComputeHeuristic() {
                                ? stairs_factor : upright_factor;
       relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
                                                           cell_cost_[size_t(j)])));
+    }
+    if (q == 1) continue;
+    for (const auto& [e, length] : aside) {
+      const int jx = ix + e.dx, jy = iy + e.dy;
+      if (!w.Contains(jx, jy)) continue;
+      const int j = w.Index(jx, jy);
+      const int other = 2 * j;
+      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
+      if (std::isfinite(height[i]) && std::isfinite(height[j]) &&
+          std::abs(double(height[j]) - double(height[i])) > max_dh) {
+        continue;
+      }
+      relax(other, h + length * stairs_factor);
     }
   }
 }
@@ -682,8 +746,9 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
       return true;
     }
   }
-  for (const CellStep& o : footprint_[q][heading]) {
-    const int nx = ix + o.dx, ny = iy + o.dy;
+  const std::vector<CellStep>& cells = footprint_[q][heading];
+  for (size_t j = 0; j < cells.size(); ++j) {
+    const int nx = ix + cells[j].dx, ny = iy + cells[j].dy;
     if (!w.Contains(nx, ny)) {
       // beyond the window is unknown: standing is allowed there, crawling is not
       if (q == 1) return false;
@@ -701,13 +766,15 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
     // feet never reach onto another tread or over a drop (the paper's border marks both sides
     // of a drop: the robot may stand at the foot of a wall or block or on the rim of a
     // platform, but its footprint never spans the drop); without heights to compare, floor
-    // and stairs cells are allowed and border cells are not
+    // and stairs cells are allowed and border cells are not; in the ring beyond level_margin
+    // a tread's height (up to h_stairs off) is allowed too
     const float h = fog_.height[i];
     if (!std::isfinite(h) || !std::isfinite(centre_h)) {
       if (t == CellType::kBorder) return false;
       continue;
     }
-    if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
+    const bool ring = q == 0 && !level_cell_[heading][j];
+    if (std::abs(double(h) - double(centre_h)) > (ring ? p_.h_stairs : p_.h_floor)) return false;
   }
   return true;
 }
@@ -723,10 +790,10 @@ uint32_t Lattice::StateFlags(int s) {
   return v & 7u;
 }
 
-bool Lattice::SweepClear(int cell, int heading, int steps, double lo, double hi) const {
+bool Lattice::SweepClear(int cell, const Climb& c, double lo, double hi) const {
   const perception::GridWindow& w = fog_.window;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
-  for (const CellStep& o : swept_[heading][size_t(steps - 1)]) {
+  for (const CellStep& o : c.swept) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) continue;  // unknown
     const size_t i = size_t(w.Index(nx, ny));
@@ -739,17 +806,19 @@ bool Lattice::SweepClear(int cell, int heading, int steps, double lo, double hi)
   return true;
 }
 
-bool Lattice::FacesStep(int cell, int heading, int steps) const {
+bool Lattice::FacesStep(int cell, int heading, const Climb& c) const {
   // the floor's height gradient summed along the origin's line crosses the riser wherever the
   // ends themselves stand on level floor
   const perception::GridWindow& w = fog_.window;
-  const CellStep d = kSteps[heading];
-  Eigen::Vector2d grad = Eigen::Vector2d::Zero();
-  for (int m = 0; m <= steps; ++m) grad += FloorGradient(cell + m * (d.dy * w.size_x + d.dx));
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  Eigen::Vector2d grad = FloorGradient(cell);
+  for (const CellStep& o : c.line) {
+    if (w.Contains(ix + o.dx, iy + o.dy)) grad += FloorGradient(w.Index(ix + o.dx, iy + o.dy));
+  }
   const double norm = grad.norm();
   if (norm <= 0.25 * p_.h_floor) return true;
-  const double along =
-      std::abs(grad.x() * d.dx + grad.y() * d.dy) / (norm * std::hypot(double(d.dx), double(d.dy)));
+  const double yaw = HeadingYaw(heading);
+  const double along = std::abs(grad.x() * std::cos(yaw) + grad.y() * std::sin(yaw)) / norm;
   return along >= cos_stairs_error_ - kEps;
 }
 
@@ -760,11 +829,10 @@ void Lattice::AddStairsMove(int s, Successor* out, int* n) {
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   const float h0 = floor_h_[size_t(cell)];
   if (!std::isfinite(h0)) return;
-  const CellStep d = kSteps[k];
-  for (int m = 1; m <= max_jump_[k]; ++m) {
+  for (const Climb& c : climbs_[k]) {
     // the end: a floor on another level within reach, where the robot stands level
-    const int nx = ix + m * d.dx, ny = iy + m * d.dy;
-    if (!w.Contains(nx, ny)) return;
+    const int nx = ix + c.to.dx, ny = iy + c.to.dy;
+    if (!w.Contains(nx, ny)) continue;
     const int to = w.Index(nx, ny);
     const float h1 = floor_h_[size_t(to)];
     if (!std::isfinite(h1)) continue;
@@ -775,17 +843,15 @@ void Lattice::AddStairsMove(int s, Successor* out, int* n) {
     // the way there: nothing in the way of the feet, no drop below or rise above the two levels
     const double lo = std::min(double(h0), double(h1)) - p_.h_floor;
     const double hi = std::max(double(h0), double(h1)) + p_.h_floor;
-    if (!SweepClear(cell, k, m, lo, hi) || !FacesStep(cell, k, m)) continue;
-    // cost: the m lattice steps along the line at the stairs factor, each with the mean
-    // clearance and unknown cost of its two ends (as the heuristic's relaxed steps)
+    if (!SweepClear(cell, c, lo, hi) || !FacesStep(cell, k, c)) continue;
+    // cost: its length at the stairs factor, with the mean clearance and unknown cost of the
+    // origin cells along it (as the heuristic's relaxed steps)
     const double factor = std::max(p_.walk_factor, p_.stairs_factor);
-    const int step = d.dy * w.size_x + d.dx;
-    double cost = 0;
-    for (int j = 0; j < m; ++j) {
-      const size_t a = size_t(cell + j * step), b = size_t(cell + (j + 1) * step);
-      cost += step_length_[k] * (factor + 0.5 * (cell_cost_[a] + cell_cost_[b]));
-    }
-    out[(*n)++] = {t, cost, m * step_length_[k], rise > 0 ? Move::kStairsUp : Move::kStairsDown};
+    double cell_cost = cell_cost_[size_t(cell)];
+    for (const CellStep& o : c.line) cell_cost += cell_cost_[size_t(w.Index(ix + o.dx, iy + o.dy))];
+    cell_cost /= double(c.line.size() + 1);
+    out[(*n)++] = {t, c.length * (factor + cell_cost), c.length,
+                   rise > 0 ? Move::kStairsUp : Move::kStairsDown};
     return;
   }
 }

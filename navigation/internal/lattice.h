@@ -140,16 +140,24 @@ class Lattice {
   // True if no tunnel cell lies under the crawling footprint at `cell`, `heading` up to
   // kneel_clear_reach ahead of the standing origin (kneel_steps_ behind `cell`).
   bool CrawlFootprintInOpen(int cell, int heading) const;
+  // A step up or down from an origin at heading k: the cell offset of its end, its length and
+  // the part of it across the heading (PlannerParams::max_step_sideways), the cells the
+  // standing footprint sweeps and the origin cells along its line (the end included).
+  struct Climb {
+    CellStep to;
+    double length = 0, across = 0;  // metres
+    std::vector<CellStep> swept, line;
+  };
   // Appends the step up or down forward from the valid standing state s, if there is one: the
-  // fewest lattice steps along its heading that end in a valid standing state on a floor more
-  // than h_floor and at most h_stairs higher or lower.
+  // shortest climb of its heading that ends in a valid standing state on a floor more than
+  // h_floor and at most h_stairs higher or lower.
   void AddStairsMove(int s, Successor* out, int* n);
-  // Whether the cells the standing footprint sweeps moving `steps` lattice steps along `heading`
-  // from `cell` are neither obstacle nor tunnel and have floor heights within [lo, hi].
-  bool SweepClear(int cell, int heading, int steps, double lo, double hi) const;
-  // Whether the floor's height gradient along the line of origin cells of that move lies within
-  // max_stairs_heading_error of the heading (up or down); true where there is no gradient.
-  bool FacesStep(int cell, int heading, int steps) const;
+  // Whether the cells the standing footprint sweeps in climb c from `cell` are neither
+  // obstacle nor tunnel and have floor heights within [lo, hi].
+  bool SweepClear(int cell, const Climb& c, double lo, double hi) const;
+  // Whether the floor's height gradient along the line of origin cells of climb c lies within
+  // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
+  bool FacesStep(int cell, int heading, const Climb& c) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
   void ComputeLevelRanges();
@@ -185,6 +193,8 @@ class Lattice {
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
+  // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
+  std::vector<uint8_t> level_cell_[kNumHeadings];
   // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
   std::vector<CellStep> body_extra_[kNumHeadings];
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
@@ -196,10 +206,9 @@ class Lattice {
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
   int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
-  // [k][m - 1]: cell offsets the standing footprint sweeps moving m lattice steps along heading
-  // k, for m = 1 .. max_jump_[k] (the most steps within max_step_length)
-  std::vector<std::vector<CellStep>> swept_[kNumHeadings];
-  int max_jump_[kNumHeadings] = {};
+  // [k]: the climbs of heading k, shortest first: every cell offset ahead within
+  // max_step_length whose part across the heading is at most max_step_sideways
+  std::vector<Climb> climbs_[kNumHeadings];
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)

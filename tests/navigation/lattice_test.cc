@@ -173,15 +173,16 @@ Fog LevelsFog() {
 
 // Standing is allowed exactly where no footprint cell is an obstacle or tunnel and every one
 // with a known floor height (not unknown, finite) is within h_floor of the floor under the
-// origin, checked cell by cell here, so the planner's shortcuts (distance transforms, height
-// ranges) can never let a footprint span a step, even on a ramp where no neighbours differ by
-// more than h_floor.
+// origin (within h_stairs beyond level_margin), checked cell by cell here, so the planner's
+// shortcuts (distance transforms, height ranges) can never let a footprint span a step, even on a
+// ramp where no neighbours differ by more than h_floor.
 TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   const PlannerParams p;
   const Fog fog = LevelsFog();
   const perception::GridWindow& w = fog.window;
   Lattice lattice(fog, {1.5, 0.7}, p);
   const double a = 0.5 * p.depth + p.margin, b = 0.5 * p.shoulder_width + p.margin;
+  const double la = 0.5 * p.depth + p.level_margin, lb = 0.5 * p.shoulder_width + p.level_margin;
   int allowed = 0, refused_for_level = 0;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -205,11 +206,12 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
             if (std::abs(u) > a + 1e-9 || std::abs(v) > b + 1e-9) continue;
             if (!w.Contains(ix + dx, iy + dy)) continue;
             if (t == CellType::kUnknown) continue;
+            const bool ring = std::abs(u) > la + 1e-9 || std::abs(v) > lb + 1e-9;
             if (t == CellType::kObstacle || t == CellType::kTunnel) {
               fits = false;
             } else if (!std::isfinite(h) || !std::isfinite(level)) {
               fits = fits && t != CellType::kBorder;
-            } else if (std::abs(double(h) - level) > p.h_floor) {
+            } else if (std::abs(double(h) - level) > (ring ? p.h_stairs : p.h_floor)) {
               fits = false;
               off_level = true;
             }
@@ -240,7 +242,8 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   EXPECT_FALSE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
 }
 
-// Steps up and down go forward along the heading, by at most max_step_length, from a level
+// Steps up and down go forward (at most max_step_sideways across the heading), by at most
+// max_step_length, from a level
 // standing state to one on a floor more than h_floor and at most h_stairs higher or lower, and
 // cost at least their length at the stairs factor; walks, side-steps and crawls stay within
 // h_floor; the heuristic stays consistent across them.
@@ -272,7 +275,10 @@ TEST(Lattice, StepsJumpBetweenLevelStatesWithinReach) {
           EXPECT_EQ(lattice.HeadingOfState(t), lattice.HeadingOfState(s));
           EXPECT_EQ(lattice.PostureOfState(t), Posture::kUpright);
           EXPECT_TRUE(lattice.Valid(t));
-          EXPECT_NEAR(along, succ[i].length, 1e-9);
+          const double across = -(b.x - a.x) * std::sin(a.yaw) + (b.y - a.y) * std::cos(a.yaw);
+          EXPECT_NEAR(std::hypot(along, across), succ[i].length, 1e-9);
+          EXPECT_GT(along, 0.0);
+          EXPECT_LE(std::abs(across), p.max_step_sideways + 1e-9);
           EXPECT_GT(succ[i].length, 0.0);
           EXPECT_LE(succ[i].length, p.max_step_length + 1e-9);
           EXPECT_GT(std::abs(dh), p.h_floor);

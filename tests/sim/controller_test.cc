@@ -224,6 +224,24 @@ TEST_F(ControllerTest, ClimbsUpAndDownTreadsOfThreeAndSixCentimetres) {
   EXPECT_NEAR(z, 0.0, 1e-3);
 }
 
+// a step onto a tread a little aside (stairs turned between the planner's headings): the lead
+// foot is the one on the side of the motion, so the feet never cross
+TEST_F(ControllerTest, StepsUpAndDownATreadALittleAside) {
+  Load(kStairs);
+  const double aside = ControllerParams().limits.max_climb_sideways;
+  c_->Walk(0.225, 0, 0);
+  c_->StepOnto(0.155, 0.03, -aside);  // onto tread 1, to the right
+  c_->Walk(0.095, 0, 0);
+  c_->StepOnto(0.16, 0.03, aside);  // onto tread 2, back to the left
+  c_->Walk(0.19, 0, 0);
+  c_->StepOnto(0.155, -0.03, aside);  // down onto tread 3, to the left
+  const Monitor monitor = Run(StairsSurface);
+  ExpectTruePose(0.98, aside, 0);
+  ExpectStanceFeetFirm(monitor);
+  ExpectNoCollisions();
+  EXPECT_THROW(c_->StepOnto(0.1, 0.03, 1.5 * aside), std::invalid_argument);
+}
+
 TEST_F(ControllerTest, StandsOnATreadAtItsHeight) {
   Load(kStairs);
   c_->Walk(0.225, 0, 0);

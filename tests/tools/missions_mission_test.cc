@@ -68,7 +68,8 @@ INSTANTIATE_TEST_SUITE_P(Missions, Suite,
                          ::testing::Values("stairs_and_table", "obstacles", "narrow_gap", "stairs",
                                            "table", "low_table", "drop_off", "enclosed", "slalom",
                                            "turn_first", "noisy_odometry", "goal_at_wall",
-                                           "noisy_gap", "wall_ahead", "course_shifted"));
+                                           "noisy_gap", "wall_ahead", "course_shifted",
+                                           "turned_stairs"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
