@@ -98,6 +98,12 @@ struct PlannerParams {
   // 0.34 m passages the robot walks through.
   double body_back = 0.055;
   double body_front = 0.09;
+  // Across, the hands reach this far beside the origin (the arms swing out in side-steps and
+  // with the pelvis's sway; measured in tests/sim): the body rectangle is as wide as that plus
+  // `margin`, so the robot keeps a hand's clearance from a block where the map leaves room (on
+  // the footprint's cells alone a block may stand 0.14 m beside the origin, 12 mm inside the
+  // hands' reach: a slalom moved by 1-2 cm put a hand on a block in 3 of 4 copies)
+  double arm_reach = 0.152;
   double body_touch_cost = 0.5;  // metres-equivalent per move
   // how far the standing robot's head reaches from its origin (looking down, the head box tilts
   // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's

@@ -220,7 +220,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   // the standing body beyond the soles' footprint
   {
     const double back = p.body_back + p.margin, front = p.body_front + p.margin;
-    const double half = half_across[0];
+    const double half = std::max(half_across[0], p.arm_reach + p.margin);
     if (!(back >= 0 && front >= 0)) Die("Plan: body extents must not be negative");
     body_outer_radius_cells_ = std::hypot(std::max(back, front), half) / w.resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
