@@ -190,6 +190,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   controller_params.seed = unsigned(scenario.seed);
   sim::Controller controller(m, controller_params);
   planner_params.kneel_offset = controller.KneelOffset();
+  // steps up and down as long and as far aside as the controller takes them
+  planner_params.max_step_length = controller_params.limits.max_climb_forward;
+  planner_params.max_step_sideways = controller_params.limits.max_climb_sideways;
   const sim::Humanoid& humanoid = controller.humanoid();
   controller.Reset({scenario.start.x, scenario.start.y, scenario.start.yaw}, 0.0, m, d);
   sim::Renderer renderer(m);
@@ -541,7 +544,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     switch (run.move) {
       case nav::Move::kStairsUp:
       case nav::Move::kStairsDown: {
-        // face the step first; a step aside within the climb's own limit is taken with it
+        // face the step first; a step aside within the climb's own limit (and 5 mm of the
+        // believed pose's offset from the plan's cell, which step_onto clamps) is taken with it
         const bool aside =
             std::abs(delta.y()) <= controller_params.limits.max_climb_sideways + 0.005;
         if (std::abs(delta.z()) > 0.05 || !aside) {
