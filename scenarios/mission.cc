@@ -193,6 +193,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   // steps up and down as long and as far aside as the controller takes them
   planner_params.max_step_length = controller_params.limits.max_climb_forward;
   planner_params.max_step_sideways = controller_params.limits.max_climb_sideways;
+  const bool seen_headroom_to_get_up = planner_params.get_up_under_seen_headroom;
   const sim::Humanoid& humanoid = controller.humanoid();
   controller.Reset({scenario.start.x, scenario.start.y, scenario.start.yaw}, 0.0, m, d);
   sim::Renderer renderer(m);
@@ -461,6 +462,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
                                      ? nav::Posture::kCrawling
                                      : nav::Posture::kUpright;
+    if (posture == nav::Posture::kUpright) {
+      planner_params.get_up_under_seen_headroom = seen_headroom_to_get_up;
+    }
     nav::PlannerParams used = planner_params;
     plan = PlanToGoal(fog, believed, scenario, planner_params, posture, &used);
     // keep to the last plan where the robot got to its end of the run and the rest of it is
@@ -494,10 +498,24 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       const double to_goal = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
       nav::PlanResult toward =
           nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
-      const bool nearer =
-          toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
-          (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
-           scenario.goal).norm() < to_goal - limits.min_approach;
+      bool nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
+                    (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
+                     scenario.goal)
+                            .norm() < to_goal - limits.min_approach;
+      // crawling with no way on: beyond a table top as thick as the eyes are high the headroom
+      // stays unseen from below, so the robot may get up where the map holds no ceiling, until
+      // it stands again
+      if (!nearer && posture == nav::Posture::kCrawling &&
+          planner_params.get_up_under_seen_headroom) {
+        nav::PlannerParams unseen = planner_params;
+        unseen.get_up_under_seen_headroom = false;
+        nav::PlanResult up = PlanToGoal(fog, believed, scenario, unseen, posture);
+        if (up.status == nav::PlanStatus::kOk && up.path.size() >= 2) {
+          planner_params = unseen;
+          toward = std::move(up);
+          nearer = true;
+        }
+      }
       if (!nearer && (!fresh_at || std::hypot(believed.x - fresh_at->x, believed.y - fresh_at->y) >
                                        limits.fresh_look_distance)) {
         for (float& l : maps.log_odds) l *= float(limits.fresh_look_keep);
