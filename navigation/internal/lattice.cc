@@ -173,6 +173,37 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     kneel_steps_[k] = int(std::lround(p.kneel_offset / step_length_[k]));
   }
 
+  // a cell offset in the frame of heading k: along and across it, metres
+  double cos_k[kNumHeadings], sin_k[kNumHeadings];
+  for (int k = 0; k < kNumHeadings; ++k) {
+    cos_k[k] = std::cos(HeadingYaw(k));
+    sin_k[k] = std::sin(HeadingYaw(k));
+  }
+  auto in_frame = [&](int k, int dx, int dy) {
+    const double c = cos_k[k], s = sin_k[k];
+    return Eigen::Vector2d((dx * c + dy * s) * w.resolution, (-dx * s + dy * c) * w.resolution);
+  };
+  // the offsets up to `reach` cells away whose centres lie in [u_lo, u_hi] x [v_lo, v_hi] of
+  // the frame of heading k
+  auto cells_in = [&](int k, int reach, double u_lo, double u_hi, double v_lo, double v_hi) {
+    std::vector<CellStep> cells;
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const Eigen::Vector2d uv = in_frame(k, dx, dy);
+        if (uv.x() >= u_lo - kEps && uv.x() <= u_hi + kEps && uv.y() >= v_lo - kEps &&
+            uv.y() <= v_hi + kEps) {
+          cells.push_back({dx, dy});
+        }
+      }
+    }
+    return cells;
+  };
+  auto max_component = [](const std::vector<CellStep>& cells) {
+    int m = 0;
+    for (const CellStep& o : cells) m = std::max({m, std::abs(o.dx), std::abs(o.dy)});
+    return m;
+  };
+
   // footprints: cells whose centres lie in the grown rectangle
   const double half_along[2] = {0.5 * p.depth + p.margin, 0.5 * p.crawl_length + p.margin};
   const double half_across[2] = {0.5 * p.shoulder_width + p.margin,
@@ -188,19 +219,9 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
     outer_reach_cells_[q] = 0;
     for (int k = 0; k < kNumHeadings; ++k) {
-      const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
       std::vector<CellStep>& cells = footprint_[q][k];
-      cells.clear();
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const double u = (dx * c + dy * s) * w.resolution - offset;
-          const double v = (-dx * s + dy * c) * w.resolution;
-          if (std::abs(u) <= a + kEps && std::abs(v) <= b + kEps) {
-            cells.push_back({dx, dy});
-            outer_reach_cells_[q] = std::max({outer_reach_cells_[q], std::abs(dx), std::abs(dy)});
-          }
-        }
-      }
+      cells = cells_in(k, reach, offset - a, offset + a, -b, b);
+      outer_reach_cells_[q] = std::max(outer_reach_cells_[q], max_component(cells));
       // outermost cells first: they meet obstacles first
       std::sort(cells.begin(), cells.end(), [](const CellStep& l, const CellStep& r) {
         return l.dx * l.dx + l.dy * l.dy > r.dx * r.dx + r.dy * r.dy;
@@ -210,9 +231,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
                    lb = 0.5 * p.shoulder_width + p.level_margin;
       level_cell_[k].clear();
       for (const CellStep& o : cells) {
-        const double u = (o.dx * c + o.dy * s) * w.resolution;
-        const double v = (-o.dx * s + o.dy * c) * w.resolution;
-        level_cell_[k].push_back(std::abs(u) <= la + kEps && std::abs(v) <= lb + kEps);
+        const Eigen::Vector2d uv = in_frame(k, o.dx, o.dy);
+        level_cell_[k].push_back(std::abs(uv.x()) <= la + kEps && std::abs(uv.y()) <= lb + kEps);
       }
     }
   }
@@ -225,18 +245,13 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     body_outer_radius_cells_ = std::hypot(std::max(back, front), half) / w.resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
-      const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
-      body_extra_[k].clear();
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          const double u = (dx * c + dy * s) * w.resolution;
-          const double v = (-dx * s + dy * c) * w.resolution;
-          if (u < -back - kEps || u > front + kEps || std::abs(v) > half + kEps) continue;
-          if (Covers(footprint_[0][k], dx, dy)) continue;
-          body_extra_[k].push_back({dx, dy});
-          body_reach_cells_ = std::max({body_reach_cells_, std::abs(dx), std::abs(dy)});
-        }
-      }
+      std::vector<CellStep>& extra = body_extra_[k];
+      extra = cells_in(k, reach, -back, front, -half, half);
+      extra.erase(
+          std::remove_if(extra.begin(), extra.end(),
+                         [&](const CellStep& o) { return Covers(footprint_[0][k], o.dx, o.dy); }),
+          extra.end());
+      body_reach_cells_ = std::max(body_reach_cells_, max_component(extra));
     }
   }
 
@@ -277,14 +292,12 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   // start footprint's back edge to the end footprint's front edge, as wide as the two side by side
   const int reach_end = int(std::ceil(p.max_step_length / w.resolution + kEps));
   for (int k = 0; k < kNumHeadings; ++k) {
-    const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
     const double a = half_along[0], b = half_across[0];
     climbs_[k].clear();
     for (int ey = -reach_end; ey <= reach_end; ++ey) {
       for (int ex = -reach_end; ex <= reach_end; ++ex) {
-        const double along = (ex * c + ey * s) * w.resolution;
-        const double across = (-ex * s + ey * c) * w.resolution;
-        const double length = std::hypot(along, across);
+        const Eigen::Vector2d end = in_frame(k, ex, ey);
+        const double along = end.x(), across = end.y(), length = std::hypot(along, across);
         if (along <= kEps || length > p.max_step_length + kEps ||
             std::abs(across) > p.max_step_sideways + kEps) {
           continue;
@@ -293,17 +306,9 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
         climb.to = {ex, ey};
         climb.length = length;
         climb.across = across;
-        const double v_lo = std::min(0.0, across) - b, v_hi = std::max(0.0, across) + b;
         const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
-        for (int dy = -reach; dy <= reach; ++dy) {
-          for (int dx = -reach; dx <= reach; ++dx) {
-            const double u = (dx * c + dy * s) * w.resolution;
-            const double v = (-dx * s + dy * c) * w.resolution;
-            if (u >= -a - kEps && u <= along + a + kEps && v >= v_lo - kEps && v <= v_hi + kEps) {
-              climb.swept.push_back({dx, dy});
-            }
-          }
-        }
+        climb.swept =
+            cells_in(k, reach, -a, along + a, std::min(0.0, across) - b, std::max(0.0, across) + b);
         const int n = std::max(std::abs(ex), std::abs(ey));
         for (int j = 1; j <= n; ++j) {
           climb.line.push_back(

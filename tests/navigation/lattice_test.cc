@@ -243,10 +243,9 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
 }
 
 // Steps up and down go forward (at most max_step_sideways across the heading), by at most
-// max_step_length, from a level
-// standing state to one on a floor more than h_floor and at most h_stairs higher or lower, and
-// cost at least their length at the stairs factor; walks, side-steps and crawls stay within
-// h_floor; the heuristic stays consistent across them.
+// max_step_length, from a level standing state to one on a floor more than h_floor and at most
+// h_stairs higher or lower, and cost at least their length at the stairs factor; walks,
+// side-steps and crawls stay within h_floor; the heuristic stays consistent across them.
 TEST(Lattice, StepsJumpBetweenLevelStatesWithinReach) {
   PlannerParams p;
   for (const double max_step : {0.16, 0.30}) {
