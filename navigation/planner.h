@@ -86,6 +86,15 @@ struct PlannerParams {
   // them, more than a step reaches, and stairs turned by 20-35 degrees had no level pose
   // within a step of each other.
   double level_margin = 0.01;
+  // Only the soles stand on the floor: the level test above holds across this width, not the
+  // shoulders'; under the rest of the footprint a tread's height (up to h_stairs off) may lie,
+  // as in the ring. The shipped humanoid's soles span 0.154 m (centres 0.09 m apart, 0.064 m
+  // wide); 2.3 cm more on each side, since a 4 cm cell whose centre lies on the lower floor may
+  // hold the last 2 cm of a riser (a riser turned by 12 degrees met a sole's front corner with
+  // 0.16). As wide as the shoulders, the footprint spans 0.28 m across a riser that, turned 9
+  // degrees from a lattice heading, lies 4.5 cm further ahead at one side than at the other:
+  // stairs turned by 17.5 or 72.5 degrees had no two level poses within a step.
+  double stance_width = 0.20;
   // Standing, the body reaches further than the soles: the knees come forward as a foot lifts
   // (the shipped humanoid, measured over side-steps and turns in tests/sim: from 0.055 m
   // behind its origin to 0.09 m ahead). A move that ends with an obstacle or tunnel cell, or a

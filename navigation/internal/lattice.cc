@@ -158,6 +158,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
     Die("Plan: level_margin must be in [0, margin]");
   }
+  if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
@@ -228,7 +229,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
       });
       if (q == 1) continue;
       const double la = 0.5 * p.depth + p.level_margin,
-                   lb = 0.5 * p.shoulder_width + p.level_margin;
+                   lb = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
       level_cell_[k].clear();
       for (const CellStep& o : cells) {
         const Eigen::Vector2d uv = in_frame(k, o.dx, o.dy);

@@ -173,16 +173,16 @@ Fog LevelsFog() {
 
 // Standing is allowed exactly where no footprint cell is an obstacle or tunnel and every one
 // with a known floor height (not unknown, finite) is within h_floor of the floor under the
-// origin (within h_stairs beyond level_margin), checked cell by cell here, so the planner's
-// shortcuts (distance transforms, height ranges) can never let a footprint span a step, even on a
-// ramp where no neighbours differ by more than h_floor.
+// origin (within h_stairs outside the soles' stance grown by level_margin), checked cell by cell
+// here, so the planner's shortcuts (distance transforms, height ranges) can never let a footprint
+// span a step, even on a ramp where no neighbours differ by more than h_floor.
 TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   const PlannerParams p;
   const Fog fog = LevelsFog();
   const perception::GridWindow& w = fog.window;
   Lattice lattice(fog, {1.5, 0.7}, p);
   const double a = 0.5 * p.depth + p.margin, b = 0.5 * p.shoulder_width + p.margin;
-  const double la = 0.5 * p.depth + p.level_margin, lb = 0.5 * p.shoulder_width + p.level_margin;
+  const double la = 0.5 * p.depth + p.level_margin, lb = 0.5 * p.stance_width + p.level_margin;
   int allowed = 0, refused_for_level = 0;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -237,9 +237,10 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   // the world has both, so the comparison means something
   EXPECT_GT(allowed, 3000);
   EXPECT_GT(refused_for_level, 3000);
-  // on the ramp: level facing up it (3 cells span 1 cm), not across it (7 cells span 3 cm)
+  // on the ramp: level facing up it (3 cells span 1 cm) and across it (the soles' 5 cells span
+  // 2 cm, 1 cm either side of the origin's); the shoulders' 7 would span 3 cm
   EXPECT_TRUE(lattice.Valid(lattice.StateIndex(20, 5, 0, Posture::kUpright)));
-  EXPECT_FALSE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
 }
 
 // Steps up and down go forward (at most max_step_sideways across the heading), by at most

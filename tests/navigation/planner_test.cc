@@ -33,12 +33,15 @@ std::string Moves(const PlanResult& r) {
 
 // Cells under a pose's footprint, computed here from the parameters independently of the
 // planner: cells whose centre lies in the rectangle grown by `margin` (default p.margin).
+// (`soles`: standing, only as wide as the soles' stance)
 std::vector<std::pair<int, int>> FootprintCells(const Fog& fog, const PathPose& q,
-                                                const PlannerParams& p, double margin = -1) {
+                                                const PlannerParams& p, double margin = -1,
+                                                bool soles = false) {
   const bool up = q.posture == Posture::kUpright;
   if (margin < 0) margin = p.margin;
   const double a = 0.5 * (up ? p.depth : p.crawl_length) + margin;
-  const double b = 0.5 * (up ? p.shoulder_width : p.crawl_width) + margin;
+  const double b =
+      0.5 * (up ? (soles ? p.stance_width : p.shoulder_width) : p.crawl_width) + margin;
   const double offset = up ? 0.0 : p.crawl_offset;
   std::vector<std::pair<int, int>> cells;
   for (int iy = 0; iy < fog.window.size_y; ++iy) {
@@ -68,17 +71,21 @@ double OriginHeight(const Fog& fog, const PathPose& q) {
   return fog.HeightAt(cx, cy);
 }
 
-// Checks that a standing pose is level: every cell of the footprint grown by level_margin with
-// a known floor height lies within h_floor of the floor under the origin.
+// Checks that a standing pose is level: every cell of the soles' stance grown by level_margin
+// with a known floor height lies within h_floor of the floor under the origin, and every one of
+// the whole footprint within h_stairs.
 void ExpectLevel(const Fog& fog, const PathPose& q, const PlannerParams& p,
                  const std::string& what) {
   const double level = OriginHeight(fog, q);
-  for (const auto& [ix, iy] : FootprintCells(fog, q, p, p.level_margin)) {
-    if (!KnownHeight(fog, ix, iy)) continue;
-    EXPECT_LE(std::abs(fog.HeightAt(ix, iy) - level), p.h_floor + 1e-7)
-        << what << ": footprint cell " << ix << "," << iy << " ("
-        << perception::CellTypeName(fog.TypeAt(ix, iy)) << ", " << fog.HeightAt(ix, iy)
-        << " m) off the origin's level " << level;
+  for (const bool soles : {true, false}) {
+    const double margin = soles ? p.level_margin : p.margin;
+    for (const auto& [ix, iy] : FootprintCells(fog, q, p, margin, soles)) {
+      if (!KnownHeight(fog, ix, iy)) continue;
+      EXPECT_LE(std::abs(fog.HeightAt(ix, iy) - level), (soles ? p.h_floor : p.h_stairs) + 1e-7)
+          << what << ": footprint cell " << ix << "," << iy << " ("
+          << perception::CellTypeName(fog.TypeAt(ix, iy)) << ", " << fog.HeightAt(ix, iy)
+          << " m) off the origin's level " << level << (soles ? " under the soles" : "");
+    }
   }
 }
 
@@ -633,6 +640,48 @@ TEST(Planner, ClimbsStairsTurnedAgainstTheLattice) {
     EXPECT_EQ(ExpectStepsFit(fog, r, p), 3) << where;
     ExpectFootprintsClear(fog, r, p);
     ExpectMovesConsistent(r);
+  }
+}
+
+// The same treads at every angle from 0 to 90 degrees in 2.5 degree steps, their risers at two
+// offsets, with each cell's height the highest under it (as the ground-truth FOG's) and the
+// robot starting at heading 0: all three climbed. With a level test as wide as the shoulders,
+// 17.5 and 72.5 degrees (9 degrees from a lattice heading) failed.
+TEST(Planner, ClimbsStairsTurnedByAnyAngle) {
+  const PlannerParams p;
+  for (double deg = 0; deg <= 90 + 1e-9; deg += 2.5) {
+    for (const double offset : {0.0, 0.02}) {
+      const double yaw = deg * M_PI / 180;
+      const Eigen::Vector2d up(std::cos(yaw), std::sin(yaw));
+      Fog fog = FlatFog(75, 60, 0.04);
+      for (int iy = 0; iy < fog.window.size_y; ++iy) {
+        for (int ix = 0; ix < fog.window.size_x; ++ix) {
+          int tread = 0;
+          for (int a = 0; a < 4; ++a) {
+            for (int b = 0; b < 4; ++b) {
+              const Eigen::Vector2d x = fog.window.CellCenter(ix, iy) +
+                                        0.01 * Eigen::Vector2d(a - 1.5, b - 1.5) -
+                                        Eigen::Vector2d(1.2 + offset, 1.2);
+              tread = std::max(tread, std::clamp(int(std::floor(x.dot(up) / 0.3)) + 1, 0, 3));
+            }
+          }
+          fog.height[size_t(fog.window.Index(ix, iy))] = 0.04f * float(tread);
+        }
+      }
+      ClassifyFloorChanges(&fog, 0.015, 0.05);
+      const Eigen::Vector2d start = Eigen::Vector2d(1.2, 1.2) - 0.5 * up;
+      const Eigen::Vector2d goal = Eigen::Vector2d(1.2, 1.2) + 1.1 * up;
+      const PlanResult r = Plan(fog, {start.x(), start.y(), 0.0}, goal, p);
+      const std::string where =
+          "stairs turned by " + std::to_string(deg) + " deg, offset " + std::to_string(offset);
+      if (r.status != PlanStatus::kOk) {
+        ADD_FAILURE() << where << ": " << NoPathReasonName(r.reason);
+        continue;
+      }
+      EXPECT_EQ(Count(r, Move::kStairsUp), 3) << where << ": " << Moves(r);
+      EXPECT_EQ(ExpectStepsFit(fog, r, p), 3) << where;
+      ExpectFootprintsClear(fog, r, p);
+    }
   }
 }
 
