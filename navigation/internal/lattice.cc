@@ -256,6 +256,50 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     }
   }
 
+  // turns in place between heading k and k + 1: the cells the soles' stance (grown by
+  // level_margin) and the body rectangle sweep at the angles in between, beyond what the two
+  // ends cover (the robot turns about its origin; the rectangles every degree or less)
+  {
+    const double sa = 0.5 * p.depth + p.level_margin,
+                 sb = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
+    const double a = half_along[0], b = half_across[0];
+    const double back = p.body_back + p.margin, front = p.body_front + p.margin;
+    const double half = std::max(b, p.arm_reach + p.margin);
+    const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
+    auto in_soles = [&](const Eigen::Vector2d& uv) {
+      return std::abs(uv.x()) <= sa + kEps && std::abs(uv.y()) <= sb + kEps;
+    };
+    auto in_body = [&](const Eigen::Vector2d& uv) {
+      return (uv.x() >= -back - kEps && uv.x() <= front + kEps &&
+              std::abs(uv.y()) <= half + kEps) ||
+             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= b + kEps);
+    };
+    for (int k = 0; k < kNumHeadings; ++k) {
+      const int k2 = (k + 1) % kNumHeadings;
+      const double yaw = HeadingYaw(k), turn = WrapAngle(HeadingYaw(k2) - yaw);
+      const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
+      turn_soles_[k].clear();
+      turn_body_[k].clear();
+      for (int dy = -reach; dy <= reach; ++dy) {
+        for (int dx = -reach; dx <= reach; ++dx) {
+          bool soles = false, body = false;
+          for (int j = 1; j < n; ++j) {
+            const double c = std::cos(yaw + turn * j / n), s = std::sin(yaw + turn * j / n);
+            const Eigen::Vector2d uv((dx * c + dy * s) * w.resolution,
+                                     (-dx * s + dy * c) * w.resolution);
+            soles = soles || in_soles(uv);
+            body = body || in_body(uv);
+          }
+          const Eigen::Vector2d at_k = in_frame(k, dx, dy), at_k2 = in_frame(k2, dx, dy);
+          if (soles && !in_soles(at_k) && !in_soles(at_k2)) turn_soles_[k].push_back({dx, dy});
+          if (body && !in_body(at_k) && !in_body(at_k2)) turn_body_[k].push_back({dx, dy});
+        }
+      }
+      body_reach_cells_ = std::max(
+          {body_reach_cells_, max_component(turn_soles_[k]), max_component(turn_body_[k])});
+    }
+  }
+
   // the head's reach
   {
     const double head = (p.head_reach + p.margin) / w.resolution + kEps;
@@ -892,13 +936,19 @@ int Lattice::Successors(int s, Successor* out) {
     if (flags & 4u) cost += p_.body_touch_cost;
     out[n++] = {t, cost, length, move};
   };
-  // a turn in place to heading k2 at angle `angle`
+  // a turn in place to heading k2 at angle `angle`; standing, the soles sweep level floor only,
+  // and a body sweeping into an obstacle costs as one ending there
   auto turn = [&](int k2, double angle, double factor) {
     const int t = StateIndex(ix, iy, k2, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
+    bool touches = flags & 4u;
+    if (posture == Posture::kUpright &&
+        !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touches)) {
+      return;
+    }
     double cost = angle * p_.turn_cost_per_rad * factor;
-    if (flags & 4u) cost += p_.body_touch_cost;
+    if (touches) cost += p_.body_touch_cost;
     out[n++] = {t, cost, 0.0, Move::kTurn};
   };
   const int left = (k + 1) % kNumHeadings, right = (k + kNumHeadings - 1) % kNumHeadings;
@@ -977,6 +1027,46 @@ bool Lattice::BodyTouches(int cell, int heading) const {
     }
   }
   return false;
+}
+
+bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
+  const perception::GridWindow& w = fog_.window;
+  const float centre_h = floor_h_[size_t(cell)];
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const double body = body_outer_radius_cells_ + kEps;
+  const bool obstacle_near = maybe_blocked_d2_[0][size_t(cell)] <= body * body;
+  const bool level = std::isfinite(centre_h) &&
+                     double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
+                     double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
+  if (!obstacle_near && (level || !std::isfinite(centre_h))) return true;
+  for (const CellStep& o : turn_soles_[k]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) continue;
+    const size_t i = size_t(w.Index(nx, ny));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kUnknown) continue;
+    if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
+    const float h = fog_.height[i];
+    if (!std::isfinite(h) || !std::isfinite(centre_h)) {
+      if (t == CellType::kBorder) return false;
+      continue;
+    }
+    if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
+  }
+  if (*touches) return true;
+  for (const CellStep& o : turn_body_[k]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) continue;
+    const size_t i = size_t(w.Index(nx, ny));
+    const CellType t = fog_.type[i];
+    if (t == CellType::kObstacle || t == CellType::kTunnel ||
+        (t != CellType::kUnknown && std::isfinite(fog_.height[i]) && std::isfinite(centre_h) &&
+         double(fog_.height[i]) - double(centre_h) > p_.h_stairs)) {
+      *touches = true;
+      break;
+    }
+  }
+  return true;
 }
 
 bool Lattice::BlindIntoUnknown(int ix, int iy, int q, int k, int b) const {

@@ -158,6 +158,11 @@ class Lattice {
   // Whether the floor's height gradient along the line of origin cells of climb c lies within
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
+  // For a standing turn in place at `cell` between heading k and k + 1: false if the soles
+  // sweep an obstacle or tunnel cell or a known floor more than h_floor off the origin's (a
+  // corner would catch on a riser); sets *touches if the body sweeps an obstacle or tunnel cell
+  // or a floor more than h_stairs above the origin's.
+  bool TurnSweepClear(int cell, int k, bool* touches) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
   void ComputeLevelRanges();
@@ -197,8 +202,12 @@ class Lattice {
   std::vector<uint8_t> level_cell_[kNumHeadings];
   // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
   std::vector<CellStep> body_extra_[kNumHeadings];
+  // [k]: offsets the soles' stance grown by level_margin, and the body rectangle with the
+  // footprint, sweep in a turn in place between heading k and k + 1 beyond both ends' own
+  std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
-  int body_reach_cells_ = 0;  // largest |offset| component of body_extra_ and head_disc_
+  // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
+  int body_reach_cells_ = 0;
   std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
   // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
   // +/-, by heading k + 4), relative to the new origin, that the footprint before did not cover

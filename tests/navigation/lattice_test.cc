@@ -456,5 +456,95 @@ TEST(Lattice, KneesOverAnObstacleCostMore) {
   EXPECT_LT(near_cost - open_cost, p.body_touch_cost + 0.1);
 }
 
+// A standing turn in place between two valid headings is offered exactly when no cell the
+// soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
+// origin's level, and costs body_touch_cost more when the body rectangle sweeps an obstacle,
+// tunnel or a floor more than h_stairs higher beyond the body at the start heading (paid for
+// on the way there). Checked cell by cell with the rectangles turned in 100 steps (a cell
+// centre moves by less than 1 mm per step); a cell whose centre lies within 2 mm of a
+// rectangle's edge may count either way.
+TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
+  const PlannerParams p;
+  const Fog fog = LevelsFog();
+  const perception::GridWindow& w = fog.window;
+  Lattice lattice(fog, {1.5, 0.7}, p);
+  const double sa = 0.5 * p.depth + p.level_margin, sb = 0.5 * p.stance_width + p.level_margin;
+  const double back = p.body_back + p.margin, front = p.body_front + p.margin;
+  const double half = p.arm_reach + p.margin;
+  const double a = 0.5 * p.depth + p.margin, b = 0.5 * p.shoulder_width + p.margin;
+  Successor succ[kMaxSuccessors];
+  int offered = 0, refused = 0, touching = 0;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const double level = lattice.FloorHeight(w.Index(ix, iy));
+      for (int k = 0; k < kNumHeadings; ++k) {
+        const int k2 = (k + 1) % kNumHeadings;
+        const int s = lattice.StateIndex(ix, iy, k, Posture::kUpright);
+        const int t = lattice.StateIndex(ix, iy, k2, Posture::kUpright);
+        if (!lattice.Valid(s) || !lattice.Valid(t)) continue;
+        const double yaw = HeadingYaw(k), d = HeadingYaw(k2) - yaw;
+        const double turn = std::atan2(std::sin(d), std::cos(d));
+        // per cell: inside at some angle by more than 2 mm (surely), by less (maybe)
+        bool soles_surely = false, soles_maybe = false, body_surely = false, body_maybe = false;
+        for (int dy = -6; dy <= 6; ++dy) {
+          for (int dx = -6; dx <= 6; ++dx) {
+            if (!w.Contains(ix + dx, iy + dy)) continue;
+            const CellType type = fog.TypeAt(ix + dx, iy + dy);
+            const float h = fog.HeightAt(ix + dx, iy + dy);
+            const bool known = type != CellType::kUnknown && std::isfinite(h);
+            const bool solid = type == CellType::kObstacle || type == CellType::kTunnel;
+            const bool off_level = solid || (known && std::abs(double(h) - level) > p.h_floor) ||
+                                   (type == CellType::kBorder && !std::isfinite(h));
+            const bool touch = solid || (known && double(h) - level > p.h_stairs);
+            if (!off_level && !touch) continue;
+            const double u0 = (dx * std::cos(yaw) + dy * std::sin(yaw)) * w.resolution;
+            const double v0 = (-dx * std::sin(yaw) + dy * std::cos(yaw)) * w.resolution;
+            const bool at_start =
+                (u0 >= -back - 0.002 && u0 <= front + 0.002 && std::abs(v0) <= half + 0.002) ||
+                (std::abs(u0) <= a + 0.002 && std::abs(v0) <= b + 0.002);
+            for (int j = 0; j <= 100; ++j) {
+              const double c = std::cos(yaw + turn * j / 100), sn = std::sin(yaw + turn * j / 100);
+              const double u = (dx * c + dy * sn) * w.resolution;
+              const double v = (-dx * sn + dy * c) * w.resolution;
+              for (const double g : {-0.002, 0.002}) {
+                const bool in_soles = std::abs(u) <= sa + g && std::abs(v) <= sb + g;
+                const bool in_body =
+                    (u >= -back - g && u <= front + g && std::abs(v) <= half + g) ||
+                    (std::abs(u) <= a + g && std::abs(v) <= b + g);
+                (g < 0 ? soles_surely : soles_maybe) |= off_level && in_soles;
+                (g < 0 ? body_surely : body_maybe) |= touch && in_body && (g > 0 || !at_start);
+              }
+            }
+          }
+        }
+        const Successor* move = SuccessorTo(&lattice, s, t, succ);
+        if (soles_surely) {
+          EXPECT_EQ(move, nullptr) << "cell " << ix << "," << iy << " heading " << k;
+        }
+        if (!soles_maybe) {
+          ASSERT_NE(move, nullptr) << "cell " << ix << "," << iy << " heading " << k;
+        }
+        if (move == nullptr) {
+          ++refused;
+          continue;
+        }
+        ++offered;
+        const double extra = move->cost - std::abs(turn) * p.turn_cost_per_rad;
+        if (body_surely) {
+          EXPECT_NEAR(extra, p.body_touch_cost, 1e-9) << "cell " << ix << "," << iy << " " << k;
+        }
+        if (!body_maybe) {
+          EXPECT_NEAR(extra, 0.0, 1e-9) << "cell " << ix << "," << iy << " " << k;
+        }
+        touching += extra > 0;
+      }
+    }
+  }
+  // the world has all three, so the comparison means something
+  EXPECT_GT(offered, 3000);
+  EXPECT_GT(refused, 20);
+  EXPECT_GT(touching, 100);
+}
+
 }  // namespace
 }  // namespace fognav::navigation::internal
