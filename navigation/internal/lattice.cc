@@ -278,15 +278,19 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
       const int k2 = (k + 1) % kNumHeadings;
       const double yaw = HeadingYaw(k), turn = WrapAngle(HeadingYaw(k2) - yaw);
       const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
+      std::vector<double> cos_j(static_cast<size_t>(n)), sin_j(static_cast<size_t>(n));
+      for (int j = 1; j < n; ++j) {
+        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * w.resolution;
+        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * w.resolution;
+      }
       turn_soles_[k].clear();
       turn_body_[k].clear();
       for (int dy = -reach; dy <= reach; ++dy) {
         for (int dx = -reach; dx <= reach; ++dx) {
           bool soles = false, body = false;
-          for (int j = 1; j < n; ++j) {
-            const double c = std::cos(yaw + turn * j / n), s = std::sin(yaw + turn * j / n);
-            const Eigen::Vector2d uv((dx * c + dy * s) * w.resolution,
-                                     (-dx * s + dy * c) * w.resolution);
+          for (int j = 1; j < n && !(soles && body); ++j) {
+            const double c = cos_j[size_t(j)], s = sin_j[size_t(j)];
+            const Eigen::Vector2d uv(dx * c + dy * s, -dx * s + dy * c);
             soles = soles || in_soles(uv);
             body = body || in_body(uv);
           }
@@ -297,6 +301,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
       }
       body_reach_cells_ = std::max(
           {body_reach_cells_, max_component(turn_soles_[k]), max_component(turn_body_[k])});
+      for (const CellStep& o : turn_soles_[k]) {
+        turn_soles_radius_cells_ =
+            std::max(turn_soles_radius_cells_, std::hypot(double(o.dx), double(o.dy)));
+      }
     }
   }
 
@@ -1033,34 +1041,42 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
   const int ix = cell % w.size_x, iy = cell / w.size_x;
-  const double body = body_outer_radius_cells_ + kEps;
-  const bool obstacle_near = maybe_blocked_d2_[0][size_t(cell)] <= body * body;
+  // the soles: nothing to check where no cell that may block lies within their sweep and every
+  // known floor around is on the origin's level
+  const double soles = turn_soles_radius_cells_ + kEps;
   const bool level = std::isfinite(centre_h) &&
                      double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
                      double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
-  if (!obstacle_near && (level || !std::isfinite(centre_h))) return true;
-  for (const CellStep& o : turn_soles_[k]) {
-    const int nx = ix + o.dx, ny = iy + o.dy;
-    if (!w.Contains(nx, ny)) continue;
-    const size_t i = size_t(w.Index(nx, ny));
-    const CellType t = fog_.type[i];
-    if (t == CellType::kUnknown) continue;
-    if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
-    const float h = fog_.height[i];
-    if (!std::isfinite(h) || !std::isfinite(centre_h)) {
-      if (t == CellType::kBorder) return false;
-      continue;
+  if (maybe_blocked_d2_[0][size_t(cell)] <= soles * soles || !(level || !std::isfinite(centre_h))) {
+    for (const CellStep& o : turn_soles_[k]) {
+      const int nx = ix + o.dx, ny = iy + o.dy;
+      if (!w.Contains(nx, ny)) continue;
+      const size_t i = size_t(w.Index(nx, ny));
+      const CellType t = fog_.type[i];
+      if (t == CellType::kUnknown) continue;
+      if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
+      const float h = fog_.height[i];
+      if (!std::isfinite(h) || !std::isfinite(centre_h)) {
+        if (t == CellType::kBorder) return false;
+        continue;
+      }
+      if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
     }
-    if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
   }
+  // the body, as BodyTouches
   if (*touches) return true;
+  const double body = body_outer_radius_cells_ + kEps;
+  const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= body * body;
+  const bool high_near =
+      std::isfinite(centre_h) && double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
+  if (!obstacle_near && !high_near) return true;
   for (const CellStep& o : turn_body_[k]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) continue;
     const size_t i = size_t(w.Index(nx, ny));
     const CellType t = fog_.type[i];
     if (t == CellType::kObstacle || t == CellType::kTunnel ||
-        (t != CellType::kUnknown && std::isfinite(fog_.height[i]) && std::isfinite(centre_h) &&
+        (high_near && t != CellType::kUnknown && std::isfinite(fog_.height[i]) &&
          double(fog_.height[i]) - double(centre_h) > p_.h_stairs)) {
       *touches = true;
       break;

@@ -205,6 +205,7 @@ class Lattice {
   // [k]: offsets the soles' stance grown by level_margin, and the body rectangle with the
   // footprint, sweep in a turn in place between heading k and k + 1 beyond both ends' own
   std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
+  double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
   // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
   int body_reach_cells_ = 0;
