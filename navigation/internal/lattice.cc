@@ -257,8 +257,12 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   }
 
   // turns in place between heading k and k + 1: the cells the soles' stance (grown by
-  // level_margin) and the body rectangle sweep at the angles in between, beyond what the two
-  // ends cover (the robot turns about its origin; the rectangles every degree or less)
+  // level_margin) and the body sweep at the angles in between, beyond what the two ends cover
+  // (the robot turns about its origin; the shapes every degree or less). The body sweeps as the
+  // shape it has, not as its bounding rectangle, whose corners (the knees' reach ahead, the
+  // hands' to the side) hold no part of it and would sweep 2 cm further out: the legs as far
+  // ahead and behind as the body rectangle and as wide as the footprint, the arms beside the
+  // footprint as far out as the hands.
   {
     const double sa = 0.5 * p.depth + p.level_margin,
                  sb = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
@@ -269,10 +273,15 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
     auto in_soles = [&](const Eigen::Vector2d& uv) {
       return std::abs(uv.x()) <= sa + kEps && std::abs(uv.y()) <= sb + kEps;
     };
+    // what the ends' own checks cover: the footprint and the body rectangle
     auto in_body = [&](const Eigen::Vector2d& uv) {
       return (uv.x() >= -back - kEps && uv.x() <= front + kEps &&
               std::abs(uv.y()) <= half + kEps) ||
              (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= b + kEps);
+    };
+    auto in_body_shape = [&](const Eigen::Vector2d& uv) {
+      return (uv.x() >= -back - kEps && uv.x() <= front + kEps && std::abs(uv.y()) <= b + kEps) ||
+             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= half + kEps);
     };
     for (int k = 0; k < kNumHeadings; ++k) {
       const int k2 = (k + 1) % kNumHeadings;
@@ -292,7 +301,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
             const double c = cos_j[size_t(j)], s = sin_j[size_t(j)];
             const Eigen::Vector2d uv(dx * c + dy * s, -dx * s + dy * c);
             soles = soles || in_soles(uv);
-            body = body || in_body(uv);
+            body = body || in_body_shape(uv);
           }
           const Eigen::Vector2d at_k = in_frame(k, dx, dy), at_k2 = in_frame(k2, dx, dy);
           if (soles && !in_soles(at_k) && !in_soles(at_k2)) turn_soles_[k].push_back({dx, dy});

@@ -458,11 +458,12 @@ TEST(Lattice, KneesOverAnObstacleCostMore) {
 
 // A standing turn in place between two valid headings is offered exactly when no cell the
 // soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
-// origin's level, and costs body_touch_cost more when the body rectangle sweeps an obstacle,
-// tunnel or a floor more than h_stairs higher beyond the body at the start heading (paid for
-// on the way there). Checked cell by cell with the rectangles turned in 100 steps (a cell
-// centre moves by less than 1 mm per step); a cell whose centre lies within 2 mm of a
-// rectangle's edge may count either way.
+// origin's level, and costs body_touch_cost more when the body (the legs' band as deep as the
+// body rectangle and as wide as the footprint, the arms' as deep as the footprint and as wide
+// as the hands reach) sweeps an obstacle, tunnel or a floor more than h_stairs higher beyond
+// the body at the start heading (paid for on the way there). Checked cell by cell with the
+// shapes turned in 100 steps (a cell centre moves by less than 1 mm per step); a cell whose
+// centre lies within 2 mm of a shape's edge may count either way.
 TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
   const PlannerParams p;
   const Fog fog = LevelsFog();
@@ -508,9 +509,12 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
               const double v = (-dx * sn + dy * c) * w.resolution;
               for (const double g : {-0.002, 0.002}) {
                 const bool in_soles = std::abs(u) <= sa + g && std::abs(v) <= sb + g;
+                // on the way the body's shape, at the end the end state's rectangles
                 const bool in_body =
-                    (u >= -back - g && u <= front + g && std::abs(v) <= half + g) ||
-                    (std::abs(u) <= a + g && std::abs(v) <= b + g);
+                    j == 100 ? (u >= -back - g && u <= front + g && std::abs(v) <= half + g) ||
+                                   (std::abs(u) <= a + g && std::abs(v) <= b + g)
+                             : (u >= -back - g && u <= front + g && std::abs(v) <= b + g) ||
+                                   (std::abs(u) <= a + g && std::abs(v) <= half + g);
                 (g < 0 ? soles_surely : soles_maybe) |= off_level && in_soles;
                 (g < 0 ? body_surely : body_maybe) |= touch && in_body && (g > 0 || !at_start);
               }
