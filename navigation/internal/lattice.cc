@@ -824,24 +824,11 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
     const size_t i = size_t(w.Index(nx, ny));
     if (q == 1 && ok_[1][i]) continue;
     if (q == 1 && !MayBeLevelBorder(i, 1)) return false;
-    // standing: never on an obstacle or under a table; anywhere on unknown cells (crawling:
-    // only border cells of the crawl zone get here)
-    const CellType t = fog_.type[i];
-    if (t == CellType::kUnknown) continue;
-    if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
-    // floor, stairs and border cells only on the level of the floor under the origin, so the
-    // feet never reach onto another tread or over a drop (the paper's border marks both sides
-    // of a drop: the robot may stand at the foot of a wall or block or on the rim of a
-    // platform, but its footprint never spans the drop); without heights to compare, floor
-    // and stairs cells are allowed and border cells are not; in the ring beyond level_margin
-    // a tread's height (up to h_stairs off) is allowed too
-    const float h = fog_.height[i];
-    if (!std::isfinite(h) || !std::isfinite(centre_h)) {
-      if (t == CellType::kBorder) return false;
-      continue;
-    }
+    // on the origin's level (crawling, only border cells of the crawl zone get here); standing,
+    // in the ring beyond the soles' stance grown by level_margin a tread's height (up to
+    // h_stairs off) is allowed too
     const bool ring = q == 0 && !level_cell_[heading][j];
-    if (std::abs(double(h) - double(centre_h)) > (ring ? p_.h_stairs : p_.h_floor)) return false;
+    if (!OnLevel(i, centre_h, ring ? p_.h_stairs : p_.h_floor)) return false;
   }
   return true;
 }
@@ -1046,6 +1033,21 @@ bool Lattice::BodyTouches(int cell, int heading) const {
   return false;
 }
 
+bool Lattice::OnLevel(size_t i, float centre_h, double tolerance) const {
+  // never on an obstacle or under a table; anywhere on unknown cells; floor, stairs and border
+  // cells only on the level of the floor under the origin, so the feet never reach onto
+  // another tread or over a drop (the paper's border marks both sides of a drop: the robot may
+  // stand at the foot of a wall or block or on the rim of a platform, but its footprint never
+  // spans the drop); without heights to compare, floor and stairs cells are allowed and border
+  // cells are not
+  const CellType t = fog_.type[i];
+  if (t == CellType::kUnknown) return true;
+  if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
+  const float h = fog_.height[i];
+  if (!std::isfinite(h) || !std::isfinite(centre_h)) return t != CellType::kBorder;
+  return std::abs(double(h) - double(centre_h)) <= tolerance;
+}
+
 bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
@@ -1059,17 +1061,9 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
   if (maybe_blocked_d2_[0][size_t(cell)] <= soles * soles || !(level || !std::isfinite(centre_h))) {
     for (const CellStep& o : turn_soles_[k]) {
       const int nx = ix + o.dx, ny = iy + o.dy;
-      if (!w.Contains(nx, ny)) continue;
-      const size_t i = size_t(w.Index(nx, ny));
-      const CellType t = fog_.type[i];
-      if (t == CellType::kUnknown) continue;
-      if (t == CellType::kObstacle || t == CellType::kTunnel) return false;
-      const float h = fog_.height[i];
-      if (!std::isfinite(h) || !std::isfinite(centre_h)) {
-        if (t == CellType::kBorder) return false;
-        continue;
+      if (w.Contains(nx, ny) && !OnLevel(size_t(w.Index(nx, ny)), centre_h, p_.h_floor)) {
+        return false;
       }
-      if (std::abs(double(h) - double(centre_h)) > p_.h_floor) return false;
     }
   }
   // the body, as BodyTouches

@@ -158,6 +158,10 @@ class Lattice {
   // Whether the floor's height gradient along the line of origin cells of climb c lies within
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
+  // Whether a standing robot's soles may be on cell i with the floor under its origin at
+  // centre_h: not an obstacle or tunnel cell, and a known floor within `tolerance` of centre_h
+  // (a border cell only so).
+  bool OnLevel(size_t i, float centre_h, double tolerance) const;
   // For a standing turn in place at `cell` between heading k and k + 1: false if the soles
   // sweep an obstacle or tunnel cell or a known floor more than h_floor off the origin's (a
   // corner would catch on a riser); sets *touches if the body sweeps an obstacle or tunnel cell

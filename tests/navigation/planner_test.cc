@@ -603,21 +603,48 @@ TEST(Planner, StepsNoLongerThanMaxStepLength) {
   EXPECT_EQ(ExpectStepsFit(fog, r, p), 2);
 }
 
-// Treads of 4 cm, 0.3 m deep, turned by `yaw` on a 3 m x 2.4 m floor: the tread of cell
-// centre c is the number of risers (at s = 1.2, 1.5, ... along the turned axis through (0, 1.2))
-// its s has passed.
-Fog TurnedTreads(double yaw, int treads) {
+// Treads of 4 cm, 0.3 m deep, turned by `yaw` on a 3 m x 2.4 m floor: the tread of a cell is
+// the number of risers (at s = 1.2, 1.5, ... along the turned axis through (0, 1.2), shifted by
+// `offset`) its centre has passed, or with `highest` the most that any part of the cell has (the
+// ground-truth FOG's heights, sampled at 16 points).
+Fog TurnedTreads(double yaw, int treads, double offset = 0, bool highest = false) {
   Fog fog = FlatFog(75, 60, 0.04);
+  const Eigen::Vector2d up(std::cos(yaw), std::sin(yaw));
   for (int iy = 0; iy < fog.window.size_y; ++iy) {
     for (int ix = 0; ix < fog.window.size_x; ++ix) {
-      const Eigen::Vector2d c = fog.window.CellCenter(ix, iy);
-      const double s = (c.x() - 1.2) * std::cos(yaw) + (c.y() - 1.2) * std::sin(yaw);
-      const int k = std::clamp(int(std::floor(s / 0.3)) + 1, 0, treads);
-      fog.height[size_t(fog.window.Index(ix, iy))] = 0.04f * float(k);
+      int tread = 0;
+      for (int a = 0; a < (highest ? 4 : 1); ++a) {
+        for (int b = 0; b < (highest ? 4 : 1); ++b) {
+          const Eigen::Vector2d part =
+              highest ? Eigen::Vector2d(0.01 * (a - 1.5), 0.01 * (b - 1.5)) : Eigen::Vector2d(0, 0);
+          const Eigen::Vector2d x =
+              fog.window.CellCenter(ix, iy) - Eigen::Vector2d(1.2 + offset, 1.2) + part;
+          tread = std::max(tread, std::clamp(int(std::floor(x.dot(up) / 0.3)) + 1, 0, treads));
+        }
+      }
+      fog.height[size_t(fog.window.Index(ix, iy))] = 0.04f * float(tread);
     }
   }
   ClassifyFloorChanges(&fog, 0.015, 0.05);
   return fog;
+}
+
+// Plans from 0.5 m before the first riser of TurnedTreads(yaw, 3, ...) to 1.1 m past it,
+// starting at heading start_yaw, and checks that the three treads are climbed on level poses.
+void ExpectClimbsThreeTreads(const Fog& fog, double yaw, double start_yaw, const PlannerParams& p,
+                             const std::string& where) {
+  const Eigen::Vector2d up(std::cos(yaw), std::sin(yaw));
+  const Eigen::Vector2d start = Eigen::Vector2d(1.2, 1.2) - 0.5 * up;
+  const Eigen::Vector2d goal = Eigen::Vector2d(1.2, 1.2) + 1.1 * up;
+  const PlanResult r = Plan(fog, {start.x(), start.y(), start_yaw}, goal, p);
+  if (r.status != PlanStatus::kOk) {
+    ADD_FAILURE() << where << ": " << NoPathReasonName(r.reason);
+    return;
+  }
+  EXPECT_EQ(Count(r, Move::kStairsUp), 3) << where << ": " << Moves(r);
+  EXPECT_EQ(ExpectStepsFit(fog, r, p), 3) << where;
+  ExpectFootprintsClear(fog, r, p);
+  ExpectMovesConsistent(r);
 }
 
 // Stairs turned against the lattice: between its headings 0, 26.6 and 45 degrees a step up
@@ -626,20 +653,8 @@ TEST(Planner, ClimbsStairsTurnedAgainstTheLattice) {
   const PlannerParams p;
   for (const double deg : {0.0, 10.0, 15.0, 20.0, 30.0, 40.0, 45.0, 60.0}) {
     const double yaw = deg * M_PI / 180;
-    const Fog fog = TurnedTreads(yaw, 3);
-    const Eigen::Vector2d up(std::cos(yaw), std::sin(yaw));
-    const Eigen::Vector2d start = Eigen::Vector2d(1.2, 1.2) - 0.5 * up;
-    const Eigen::Vector2d goal = Eigen::Vector2d(1.2, 1.2) + 1.1 * up;
-    const PlanResult r = Plan(fog, {start.x(), start.y(), yaw}, goal, p);
-    const std::string where = "stairs turned by " + std::to_string(deg) + " deg";
-    if (r.status != PlanStatus::kOk) {
-      ADD_FAILURE() << where << ": " << NoPathReasonName(r.reason);
-      continue;
-    }
-    EXPECT_EQ(Count(r, Move::kStairsUp), 3) << where << ": " << Moves(r);
-    EXPECT_EQ(ExpectStepsFit(fog, r, p), 3) << where;
-    ExpectFootprintsClear(fog, r, p);
-    ExpectMovesConsistent(r);
+    ExpectClimbsThreeTreads(TurnedTreads(yaw, 3), yaw, yaw, p,
+                            "stairs turned by " + std::to_string(deg) + " deg");
   }
 }
 
@@ -652,35 +667,9 @@ TEST(Planner, ClimbsStairsTurnedByAnyAngle) {
   for (double deg = 0; deg <= 90 + 1e-9; deg += 2.5) {
     for (const double offset : {0.0, 0.02}) {
       const double yaw = deg * M_PI / 180;
-      const Eigen::Vector2d up(std::cos(yaw), std::sin(yaw));
-      Fog fog = FlatFog(75, 60, 0.04);
-      for (int iy = 0; iy < fog.window.size_y; ++iy) {
-        for (int ix = 0; ix < fog.window.size_x; ++ix) {
-          int tread = 0;
-          for (int a = 0; a < 4; ++a) {
-            for (int b = 0; b < 4; ++b) {
-              const Eigen::Vector2d x = fog.window.CellCenter(ix, iy) +
-                                        0.01 * Eigen::Vector2d(a - 1.5, b - 1.5) -
-                                        Eigen::Vector2d(1.2 + offset, 1.2);
-              tread = std::max(tread, std::clamp(int(std::floor(x.dot(up) / 0.3)) + 1, 0, 3));
-            }
-          }
-          fog.height[size_t(fog.window.Index(ix, iy))] = 0.04f * float(tread);
-        }
-      }
-      ClassifyFloorChanges(&fog, 0.015, 0.05);
-      const Eigen::Vector2d start = Eigen::Vector2d(1.2, 1.2) - 0.5 * up;
-      const Eigen::Vector2d goal = Eigen::Vector2d(1.2, 1.2) + 1.1 * up;
-      const PlanResult r = Plan(fog, {start.x(), start.y(), 0.0}, goal, p);
-      const std::string where =
-          "stairs turned by " + std::to_string(deg) + " deg, offset " + std::to_string(offset);
-      if (r.status != PlanStatus::kOk) {
-        ADD_FAILURE() << where << ": " << NoPathReasonName(r.reason);
-        continue;
-      }
-      EXPECT_EQ(Count(r, Move::kStairsUp), 3) << where << ": " << Moves(r);
-      EXPECT_EQ(ExpectStepsFit(fog, r, p), 3) << where;
-      ExpectFootprintsClear(fog, r, p);
+      ExpectClimbsThreeTreads(
+          TurnedTreads(yaw, 3, offset, /*highest=*/true), yaw, 0.0, p,
+          "stairs turned by " + std::to_string(deg) + " deg, offset " + std::to_string(offset));
     }
   }
 }
