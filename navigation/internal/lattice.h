@@ -158,9 +158,9 @@ class Lattice {
   // Whether the floor's height gradient along the line of origin cells of climb c lies within
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
-  // Whether a standing robot's soles may be on cell i with the floor under its origin at
-  // centre_h: not an obstacle or tunnel cell, and a known floor within `tolerance` of centre_h
-  // (a border cell only so).
+  // Whether a footprint may hold cell i with the floor under its origin at centre_h: not an
+  // obstacle or tunnel cell, and a known floor within `tolerance` of centre_h (a border cell
+  // only so; unknown cells and cells without heights to compare are allowed).
   bool OnLevel(size_t i, float centre_h, double tolerance) const;
   // For a standing turn in place at `cell` between heading k and k + 1: false if the soles
   // sweep an obstacle or tunnel cell or a known floor more than h_floor off the origin's (a
@@ -206,8 +206,8 @@ class Lattice {
   std::vector<uint8_t> level_cell_[kNumHeadings];
   // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
   std::vector<CellStep> body_extra_[kNumHeadings];
-  // [k]: offsets the soles' stance grown by level_margin, and the body rectangle with the
-  // footprint, sweep in a turn in place between heading k and k + 1 beyond both ends' own
+  // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
+  // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
   std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
   double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
