@@ -209,6 +209,15 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   const double half_along[2] = {0.5 * p.depth + p.margin, 0.5 * p.crawl_length + p.margin};
   const double half_across[2] = {0.5 * p.shoulder_width + p.margin,
                                  0.5 * p.crawl_width + p.margin};
+  // standing: the soles' stance grown by level_margin (an offset's centre in the frame of the
+  // heading inside it), and the body rectangle
+  const double level_along = 0.5 * p.depth + p.level_margin,
+               level_across = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
+  auto in_stance = [&](const Eigen::Vector2d& uv) {
+    return std::abs(uv.x()) <= level_along + kEps && std::abs(uv.y()) <= level_across + kEps;
+  };
+  const double body_back = p.body_back + p.margin, body_front = p.body_front + p.margin;
+  const double body_half = std::max(half_across[0], p.arm_reach + p.margin);
   for (int q = 0; q < 2; ++q) {
     const double a = half_along[q], b = half_across[q];
     const double offset = q == 0 ? 0.0 : p.crawl_offset;  // rectangle centre ahead of the origin
@@ -228,26 +237,20 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
         return l.dx * l.dx + l.dy * l.dy > r.dx * r.dx + r.dy * r.dy;
       });
       if (q == 1) continue;
-      const double la = 0.5 * p.depth + p.level_margin,
-                   lb = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
       level_cell_[k].clear();
-      for (const CellStep& o : cells) {
-        const Eigen::Vector2d uv = in_frame(k, o.dx, o.dy);
-        level_cell_[k].push_back(std::abs(uv.x()) <= la + kEps && std::abs(uv.y()) <= lb + kEps);
-      }
+      for (const CellStep& o : cells) level_cell_[k].push_back(in_stance(in_frame(k, o.dx, o.dy)));
     }
   }
 
   // the standing body beyond the soles' footprint
   {
-    const double back = p.body_back + p.margin, front = p.body_front + p.margin;
-    const double half = std::max(half_across[0], p.arm_reach + p.margin);
-    if (!(back >= 0 && front >= 0)) Die("Plan: body extents must not be negative");
-    body_outer_radius_cells_ = std::hypot(std::max(back, front), half) / w.resolution;
+    if (!(body_back >= 0 && body_front >= 0)) Die("Plan: body extents must not be negative");
+    body_outer_radius_cells_ =
+        std::hypot(std::max(body_back, body_front), body_half) / w.resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
       std::vector<CellStep>& extra = body_extra_[k];
-      extra = cells_in(k, reach, -back, front, -half, half);
+      extra = cells_in(k, reach, -body_back, body_front, -body_half, body_half);
       extra.erase(
           std::remove_if(extra.begin(), extra.end(),
                          [&](const CellStep& o) { return Covers(footprint_[0][k], o.dx, o.dy); }),
@@ -264,24 +267,17 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   // ahead and behind as the body rectangle and as wide as the footprint, the arms beside the
   // footprint as far out as the hands.
   {
-    const double sa = 0.5 * p.depth + p.level_margin,
-                 sb = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
     const double a = half_along[0], b = half_across[0];
-    const double back = p.body_back + p.margin, front = p.body_front + p.margin;
-    const double half = std::max(b, p.arm_reach + p.margin);
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
-    auto in_soles = [&](const Eigen::Vector2d& uv) {
-      return std::abs(uv.x()) <= sa + kEps && std::abs(uv.y()) <= sb + kEps;
-    };
-    // what the ends' own checks cover: the footprint and the body rectangle
-    auto in_body = [&](const Eigen::Vector2d& uv) {
-      return (uv.x() >= -back - kEps && uv.x() <= front + kEps &&
-              std::abs(uv.y()) <= half + kEps) ||
-             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= b + kEps);
-    };
     auto in_body_shape = [&](const Eigen::Vector2d& uv) {
-      return (uv.x() >= -back - kEps && uv.x() <= front + kEps && std::abs(uv.y()) <= b + kEps) ||
-             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= half + kEps);
+      return (uv.x() >= -body_back - kEps && uv.x() <= body_front + kEps &&
+              std::abs(uv.y()) <= b + kEps) ||
+             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= body_half + kEps);
+    };
+    // what the ends' own checks cover: the footprint and the body rectangle beyond it
+    auto at_ends = [&](int k, int k2, int dx, int dy) {
+      return Covers(footprint_[0][k], dx, dy) || Covers(body_extra_[k], dx, dy) ||
+             Covers(footprint_[0][k2], dx, dy) || Covers(body_extra_[k2], dx, dy);
     };
     for (int k = 0; k < kNumHeadings; ++k) {
       const int k2 = (k + 1) % kNumHeadings;
@@ -300,12 +296,13 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
           for (int j = 1; j < n && !(soles && body); ++j) {
             const double c = cos_j[size_t(j)], s = sin_j[size_t(j)];
             const Eigen::Vector2d uv(dx * c + dy * s, -dx * s + dy * c);
-            soles = soles || in_soles(uv);
+            soles = soles || in_stance(uv);
             body = body || in_body_shape(uv);
           }
-          const Eigen::Vector2d at_k = in_frame(k, dx, dy), at_k2 = in_frame(k2, dx, dy);
-          if (soles && !in_soles(at_k) && !in_soles(at_k2)) turn_soles_[k].push_back({dx, dy});
-          if (body && !in_body(at_k) && !in_body(at_k2)) turn_body_[k].push_back({dx, dy});
+          if (soles && !in_stance(in_frame(k, dx, dy)) && !in_stance(in_frame(k2, dx, dy))) {
+            turn_soles_[k].push_back({dx, dy});
+          }
+          if (body && !at_ends(k, k2, dx, dy)) turn_body_[k].push_back({dx, dy});
         }
       }
       body_reach_cells_ = std::max(
@@ -807,11 +804,7 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   if (maybe_d2 > out * out) {
     if (q == 1 && inside) return true;
     // standing: fits for certain when every known floor height around is on the centre's level
-    if (q == 0 && std::isfinite(centre_h) &&
-        double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
-        double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor) {
-      return true;
-    }
+    if (q == 0 && LevelAround(cell)) return true;
   }
   const std::vector<CellStep>& cells = footprint_[q][heading];
   for (size_t j = 0; j < cells.size(); ++j) {
@@ -1010,7 +1003,18 @@ bool Lattice::HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const {
   return false;
 }
 
+bool Lattice::LevelAround(int cell) const {
+  const float centre_h = floor_h_[size_t(cell)];
+  return std::isfinite(centre_h) &&
+         double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
+         double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
+}
+
 bool Lattice::BodyTouches(int cell, int heading) const {
+  return BodyMeets(cell, body_extra_[heading]);
+}
+
+bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
   const double body = body_outer_radius_cells_ + kEps;
@@ -1019,7 +1023,7 @@ bool Lattice::BodyTouches(int cell, int heading) const {
                          double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
   if (!obstacle_near && !high_near) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
-  for (const CellStep& o : body_extra_[heading]) {
+  for (const CellStep& o : offsets) {
     const int nx = ix + o.dx, ny = iy + o.dy;
     if (!w.Contains(nx, ny)) continue;
     const size_t i = size_t(w.Index(nx, ny));
@@ -1055,10 +1059,8 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
   // the soles: nothing to check where no cell that may block lies within their sweep and every
   // known floor around is on the origin's level
   const double soles = turn_soles_radius_cells_ + kEps;
-  const bool level = std::isfinite(centre_h) &&
-                     double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
-                     double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
-  if (maybe_blocked_d2_[0][size_t(cell)] <= soles * soles || !(level || !std::isfinite(centre_h))) {
+  if (maybe_blocked_d2_[0][size_t(cell)] <= soles * soles ||
+      !(LevelAround(cell) || !std::isfinite(centre_h))) {
     for (const CellStep& o : turn_soles_[k]) {
       const int nx = ix + o.dx, ny = iy + o.dy;
       if (w.Contains(nx, ny) && !OnLevel(size_t(w.Index(nx, ny)), centre_h, p_.h_floor)) {
@@ -1067,24 +1069,7 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
     }
   }
   // the body, as BodyTouches
-  if (*touches) return true;
-  const double body = body_outer_radius_cells_ + kEps;
-  const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= body * body;
-  const bool high_near =
-      std::isfinite(centre_h) && double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
-  if (!obstacle_near && !high_near) return true;
-  for (const CellStep& o : turn_body_[k]) {
-    const int nx = ix + o.dx, ny = iy + o.dy;
-    if (!w.Contains(nx, ny)) continue;
-    const size_t i = size_t(w.Index(nx, ny));
-    const CellType t = fog_.type[i];
-    if (t == CellType::kObstacle || t == CellType::kTunnel ||
-        (high_near && t != CellType::kUnknown && std::isfinite(fog_.height[i]) &&
-         double(fog_.height[i]) - double(centre_h) > p_.h_stairs)) {
-      *touches = true;
-      break;
-    }
-  }
+  if (!*touches) *touches = BodyMeets(cell, turn_body_[k]);
   return true;
 }
 

@@ -158,6 +158,12 @@ class Lattice {
   // Whether the floor's height gradient along the line of origin cells of climb c lies within
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
+  // Whether every known floor height (not unknown or obstacle, finite) in the square of
+  // level_lo_ / level_hi_ around `cell` lies within h_floor of the cell's own.
+  bool LevelAround(int cell) const;
+  // Whether the standing body at `cell`, as the offsets `offsets` (body_extra_, turn_body_),
+  // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's.
+  bool BodyMeets(int cell, const std::vector<CellStep>& offsets) const;
   // Whether a footprint may hold cell i with the floor under its origin at centre_h: not an
   // obstacle or tunnel cell, and a known floor within `tolerance` of centre_h (a border cell
   // only so; unknown cells and cells without heights to compare are allowed).
