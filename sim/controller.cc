@@ -141,6 +141,9 @@ void Controller::PushStride(double dx, double dy, double dyaw, double dz) {
   int lead = 0;
   if (dy < -1e-9 || (std::abs(dy) <= 1e-9 && dyaw < -1e-9)) lead = 1;
   const int step_ticks = std::max(1, int(std::lround(params_.step_time * params_.control_rate_hz)));
+  // a side-step or a turn in place on one level (corrections for the odometry may move it a
+  // few mm along)
+  const bool sideways = dz == 0 && std::abs(dx) < std::max(std::abs(dy), 0.01);
   for (int k = 0; k < 2; ++k) {
     const int side = k == 0 ? lead : 1 - lead;
     Segment seg;
@@ -150,7 +153,8 @@ void Controller::PushStride(double dx, double dy, double dyaw, double dz) {
     seg.feet_to = plan_.feet;
     seg.feet_to[side] = NoisyFoot(to, side);
     seg.swing = side;
-    seg.lift_z = std::max(seg.feet_from[side].p.z(), seg.feet_to[side].p.z()) + params_.swing_clearance;
+    seg.lift_z = std::max(seg.feet_from[side].p.z(), seg.feet_to[side].p.z()) +
+                 (sideways ? params_.side_clearance : params_.swing_clearance);
     if (k == 1) seg.odometry = {dx, dy, dyaw};
     seg.steps = 1;
     plan_.feet = seg.feet_to;

@@ -53,6 +53,11 @@ struct ControllerParams {
   double hip_height = 0.18;      // m from ankle to hip while standing (knees bent)
   double max_leg = 0.195;        // m, longest hip-to-ankle distance used (keeps knees bent)
   double swing_clearance = 0.025;  // m, swing sole above the higher surface (floor or tread)
+  // Side-steps and turns in place lift the sole less: the knee comes forward as the foot lifts
+  // (0.09 m ahead of the origin at 0.025 m, 0.081 m at 0.012 m), and these are the moves that
+  // pass between blocks, facing one of them. They cross floor the planner holds level (within
+  // its h_floor, 1.5 cm), so a sole meets at most 3 mm of a rise, within support_depth.
+  double side_clearance = 0.012;   // m
   double pelvis_sway = 0.012;      // m, pelvis shift towards the stance foot
   double head_speed = 2.0;         // rad/s of neck pan and tilt
   double crawl_cycle_time = 2.0;   // s per crawl cycle (each limb swings once)
