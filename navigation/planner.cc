@@ -64,15 +64,15 @@ const char* NoPathReasonName(NoPathReason reason) {
 
 namespace {
 
-// A* from the start to the goal region, or with `toward` to the state of least cost plus
-// exit_factor times its distance to the goal
+// A* from the start to the end state of least path cost plus terminal cost (internal::End)
 PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
                   const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture,
-                  bool toward) {
+                  internal::End end) {
   // per-state arrays and the open list are reused between calls on this thread
   thread_local std::vector<internal::OpenEntry> thread_heap;
   internal::SearchMemory& memory = ThreadMemory();
-  internal::Lattice lattice(fog, goal_G, p, &memory, toward);
+  internal::Lattice lattice(fog, goal_G, p, &memory, end);
+  if (!lattice.HasEnd()) return NoPath(NoPathReason::kGoalEnclosed);
 
   // where the search may start and end
   const std::vector<internal::Seed> seeds = lattice.StartSeeds(start_G, start_posture);
@@ -193,7 +193,7 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   if (earlier.status != PlanStatus::kOk || from >= earlier.path.size()) {
     return NoPath(NoPathReason::kStartBlocked);
   }
-  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), /*toward=*/false,
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal,
                             /*heuristic=*/false);
   const perception::GridWindow& w = fog.window;
   int s = 0, ix = 0, iy = 0;
@@ -234,13 +234,19 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
-  return Search(fog, start_G, goal_G, p, start_posture, /*toward=*/false);
+  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);
 }
 
 PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture) {
-  return Search(fog, start_G, goal_G, p, start_posture, /*toward=*/true);
+  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kToward);
+}
+
+PlanResult PlanBeyond(const perception::Fog& fog, const perception::Pose2& start_G,
+                      const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                      Posture start_posture) {
+  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kBeyond);
 }
 
 std::vector<PathSegment> SegmentPath(const PlanResult& plan) {

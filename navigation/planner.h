@@ -256,6 +256,18 @@ PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture = Posture::kUpright);
 
+// Plans as Plan does, but to the edge of the map window, for a goal in the window that the
+// start cannot reach inside it (a wall whose end lies beyond the window): the goal's region
+// (the cells a walk from the goal reaches over floor, stairs, tunnel and unknown cells, never
+// across a border cell or a rise of more than h_stairs) meets the window's edge at some cells;
+// each edge cell ends the search at exit_factor times its distance to the nearest of them plus
+// that one's walk to the goal (at walk_factor). reaches_goal is false. kNoPath with
+// kGoalEnclosed when the goal's region meets no edge cell (or the goal lies outside the
+// window), so a goal walled in within the window still has no path.
+PlanResult PlanBeyond(const perception::Fog& fog, const perception::Pose2& start_G,
+                      const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                      Posture start_posture = Posture::kUpright);
+
 // The rest of an earlier plan on a new map: the robot at start_G (on or near the lattice pose
 // earlier.path[from]) follows the same moves on, priced as Plan prices them on `fog`, with the
 // new map's floor heights, and the exit term where the goal is outside the window (the path is

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <queue>
 #include <utility>
 
 #include "navigation/internal/open_list.h"
@@ -135,9 +136,9 @@ void SearchMemory::Begin(int num_states) {
   }
 }
 
-Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
-                 const PlannerParams& p, SearchMemory* memory, bool toward, bool heuristic)
-    : fog_(fog), p_(p), goal_G_(goal_G), memory_(memory ? memory : &own_memory_) {
+Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                 SearchMemory* memory, End end, bool heuristic)
+    : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
   const perception::GridWindow& w = fog.window;
   if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
   num_cells_ = w.NumCells();
@@ -164,7 +165,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G,
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  goal_in_window_ = !toward && w.Contains(gx, gy);
+  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
+  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kToward;
 
   cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
   // lattice geometry
@@ -613,14 +615,87 @@ bool Lattice::InGoalRegion(int cell) const {
 void Lattice::ComputeTerminalCosts() {
   const perception::GridWindow& w = fog_.window;
   terminal_.assign(size_t(num_cells_), kInf);
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
+  if (end_ == End::kBeyond && !w.Contains(gx, gy)) return;  // has_end_ stays false
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const int i = w.Index(ix, iy);
-      if (goal_in_window_) {
+      if (end_ != End::kToward) {
         if (InGoalRegion(i)) terminal_[size_t(i)] = 0.0;
       } else {
         terminal_[size_t(i)] = (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor;
       }
+    }
+  }
+  if (end_ == End::kBeyond) ComputeBeyondTerminalCosts();
+  has_end_ = std::any_of(terminal_.begin(), terminal_.end(), [](double t) { return t < kInf; });
+}
+
+void Lattice::ComputeBeyondTerminalCosts() {
+  const perception::GridWindow& w = fog_.window;
+  // the goal's region: the cells a walk or crawl over floor, stairs, tunnel and unknown cells
+  // reaches from the goal region, never across a border cell or a rise of more than h_stairs
+  // (so it does not climb a wall's top, as the heuristic's relaxed graph may through the
+  // heights of border cells); each cell's cost is its distance from the goal at walk_factor
+  const size_t n = size_t(num_cells_);
+  auto passable = [&](size_t i) {
+    const CellType t = fog_.type[i];
+    return t == CellType::kFloor || t == CellType::kStairs || t == CellType::kTunnel ||
+           t == CellType::kUnknown;
+  };
+  std::vector<double> cost(n, kInf);
+  using Entry = std::pair<double, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (size_t i = 0; i < n; ++i) {
+    if (terminal_[i] == 0.0 && passable(i)) {
+      cost[i] = 0.0;
+      queue.push({0.0, int(i)});
+    }
+  }
+  while (!queue.empty()) {
+    const auto [c, i] = queue.top();
+    queue.pop();
+    if (c > cost[size_t(i)]) continue;
+    const int ix = i % w.size_x, iy = i / w.size_x;
+    for (int k = 0; k < kNumHeadings; k += 2) {  // the 8 neighbours
+      const int jx = ix + kSteps[k].dx, jy = iy + kSteps[k].dy;
+      if (!w.Contains(jx, jy)) continue;
+      const size_t j = size_t(w.Index(jx, jy));
+      if (!passable(j)) continue;
+      const float hi = floor_h_[size_t(i)], hj = floor_h_[j];
+      if (std::isfinite(hi) && std::isfinite(hj) &&
+          std::abs(double(hj) - double(hi)) > p_.h_stairs) {
+        continue;
+      }
+      const double cj = c + step_length_[k] * p_.walk_factor;
+      if (cj < cost[j]) {
+        cost[j] = cj;
+        queue.push({cj, int(j)});
+      }
+    }
+  }
+  // the window's edge: where the region meets it, and every edge cell priced by those
+  std::vector<int> edge;
+  for (int ix = 0; ix < w.size_x; ++ix) {
+    edge.push_back(w.Index(ix, 0));
+    if (w.size_y > 1) edge.push_back(w.Index(ix, w.size_y - 1));
+  }
+  for (int iy = 1; iy + 1 < w.size_y; ++iy) {
+    edge.push_back(w.Index(0, iy));
+    if (w.size_x > 1) edge.push_back(w.Index(w.size_x - 1, iy));
+  }
+  std::vector<std::pair<Eigen::Vector2d, double>> reached;  // edge cell centre, its cost
+  for (const int i : edge) {
+    if (cost[size_t(i)] < kInf) {
+      reached.push_back({w.CellCenter(i % w.size_x, i / w.size_x), cost[size_t(i)]});
+    }
+  }
+  terminal_.assign(n, kInf);
+  for (const int i : edge) {
+    const Eigen::Vector2d c = w.CellCenter(i % w.size_x, i / w.size_x);
+    for (const auto& [b, h] : reached) {
+      terminal_[size_t(i)] = std::min(terminal_[size_t(i)], h + (c - b).norm() * p_.exit_factor);
     }
   }
 }

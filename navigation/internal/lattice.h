@@ -66,16 +66,26 @@ struct SearchMemory {
   void Begin(int num_states);
 };
 
+// Where a search may end (Lattice::TerminalCost).
+enum class End : uint8_t {
+  kGoal,    // in the goal region at no cost; with the goal outside the window, as kToward
+  kToward,  // anywhere, at exit_factor times the straight-line distance to the goal
+  // at the window's edge, where the goal might be reached from beyond the window: each edge
+  // cell at exit_factor times its distance to the nearest edge cell of the goal's region (the
+  // cells a walk from the goal reaches over floor, stairs, tunnel and unknown cells, never
+  // across a border cell or a rise of more than h_stairs), plus that cell's walk from the goal
+  kBeyond,
+};
+
 class Lattice {
  public:
   // Prepares per-cell permissions, costs, footprints and the heuristic for one query, using
-  // `memory` (or memory of its own when null) for the per-state arrays. With `toward`, every
-  // cell ends the search at exit_factor times its distance to the goal, as when the goal lies
-  // outside the window (GoalInWindow() is then false). Without `heuristic` the heuristic is 0
-  // everywhere (for walking a given path, which needs none). Aborts if the FOG's arrays do not
-  // match its window.
+  // `memory` (or memory of its own when null) for the per-state arrays, for a search that ends
+  // as `end` says (GoalInWindow() is false unless it ends in the goal region). Without
+  // `heuristic` the heuristic is 0 everywhere (for walking a given path, which needs none).
+  // Aborts if the FOG's arrays do not match its window.
   Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
-          SearchMemory* memory = nullptr, bool toward = false, bool heuristic = true);
+          SearchMemory* memory = nullptr, End end = End::kGoal, bool heuristic = true);
   SearchMemory& memory() { return *memory_; }
   uint32_t generation() const { return memory_->generation; }
 
@@ -97,9 +107,11 @@ class Lattice {
   bool Valid(int s) { return (StateFlags(s) & 1u) != 0; }
   // Writes the successors of a valid state into out (at most kMaxSuccessors); returns how many.
   int Successors(int s, Successor* out);
-  // Cost of ending the path at state s: 0 in the goal region, the exit cost when the goal is
-  // outside the window, +infinity otherwise.
+  // Cost of ending the path at state s (see End); +infinity where it may not end.
   double TerminalCost(int s) const;
+  // Whether the search may end anywhere (kBeyond: false when the goal's region reaches no edge
+  // cell of the window, or the goal lies outside it).
+  bool HasEnd() const { return has_end_; }
   // Consistent lower bound on the cost from state s to the end of a path (+infinity when the
   // relaxed problem already shows that none exists).
   double Heuristic(int s) const { return heuristic_[size_t(s / kNumHeadings)]; }
@@ -179,6 +191,8 @@ class Lattice {
   void ComputePermissions();
   void ComputeCellCosts();
   void ComputeTerminalCosts();
+  // End::kBeyond: from the goal region's terminal costs to those of the window's edge
+  void ComputeBeyondTerminalCosts();
   void ComputeHeuristic();
   // Floor height change from one cell to another (0 if either has no floor height).
   double HeightStep(int from_cell, int to_cell) const;
@@ -189,7 +203,9 @@ class Lattice {
   const perception::Fog& fog_;
   PlannerParams p_;
   Eigen::Vector2d goal_G_;
+  End end_ = End::kGoal;
   bool goal_in_window_ = false;
+  bool has_end_ = false;
   int num_cells_ = 0;
 
   std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest

@@ -776,6 +776,60 @@ TEST(Planner, PlanTowardAnEnclosedGoalEndsAtTheNearestReachablePlace) {
              Eigen::Vector2d(2.10, 1.50)).norm(), p.goal_tolerance + 1e-9);
 }
 
+// A wall across the whole window at x = 1.5, the goal 0.5 m beyond it: inside the window the
+// start cannot reach it, but the wall may end beyond the window, where the goal's region meets
+// the window's edge (south, east and north of the wall's east side).
+TEST(Planner, PlanBeyondLeadsToTheWindowEdgeWhereTheGoalsRegionMeetsIt) {
+  Fog fog = FlatFog(75, 75, 0.04);  // 3 m x 3 m
+  FillBox(&fog, 1.44, 0.0, 1.56, 3.0, CellType::kObstacle, 0.3f);
+  const PlannerParams p;
+  const perception::Pose2 start{1.0, 1.2, 0.0};
+  const Eigen::Vector2d goal(2.0, 1.5);
+  ASSERT_EQ(Plan(fog, start, goal, p).status, PlanStatus::kNoPath);
+  PlanResult r = PlanBeyond(fog, start, goal, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_FALSE(r.reaches_goal);
+  ExpectFootprintsClear(fog, r, p);
+  // to the nearer edge, the south one, just west of the wall
+  perception::Pose2 end = r.path.back().pose_G;
+  EXPECT_LT(end.y, 0.04);
+  EXPECT_GT(end.x, 1.1);
+  EXPECT_LT(end.x, 1.44);
+  // the goal's region closed at the south and east edges: to the north edge by the wall
+  FillBox(&fog, 1.56, 0.0, 3.0, 0.12, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 2.88, 0.0, 3.0, 3.0, CellType::kObstacle, 0.3f);
+  r = PlanBeyond(fog, start, goal, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  ExpectFootprintsClear(fog, r, p);
+  end = r.path.back().pose_G;
+  EXPECT_GT(end.y, 2.96);
+  EXPECT_GT(end.x, 1.1);
+  EXPECT_LT(end.x, 1.44);
+  // the goal's side closed at the north edge by a block as high as the wall, whose border
+  // cells the floor map smoothed into a ramp of 4.5 cm steps: its top is floor, but the goal's
+  // region must not climb onto it over border cells, so there is no way
+  FillBox(&fog, 1.56, 2.76, 3.0, 3.0, CellType::kFloor, 0.3f);
+  for (int row = 0; row < 6; ++row) {
+    FillBox(&fog, 1.56, 2.52 + 0.04 * row, 3.0, 2.56 + 0.04 * row, CellType::kBorder,
+            0.045f * float(row + 1));
+  }
+  r = PlanBeyond(fog, start, goal, p);
+  EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+}
+
+// A goal walled in within the window has no region at the window's edge: PlanBeyond finds no
+// way, as Plan does, so a robot sent to it ends with no path instead of wandering off.
+TEST(Planner, PlanBeyondFindsNoWayToAGoalWalledInWithinTheWindow) {
+  const Fog fog = WalledRoom();
+  const PlanResult r = PlanBeyond(fog, {0.30, 1.50, 0.0}, {2.10, 1.50}, PlannerParams());
+  EXPECT_EQ(r.status, PlanStatus::kNoPath);
+  EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
+  // a goal outside the window is PlanToward's business
+  const PlanResult outside = PlanBeyond(fog, {0.30, 1.50, 0.0}, {4.0, 1.50}, PlannerParams());
+  EXPECT_EQ(outside.status, PlanStatus::kNoPath);
+}
+
 // A wall with an L-shaped slot 0.16 m wide: open to a robot without orientation, but too narrow
 // to turn the corner in, so only the full search can tell that the goal is enclosed.
 TEST(Planner, GoalBehindASlotTooNarrowToTurnInIsEnclosed) {
