@@ -58,6 +58,11 @@ struct ExecutionLimits {
   // two collisions (what lay beside the robot in a gap was forgotten), keeping 0.1 met 34.
   double fresh_look_keep = 0.5;
   double fresh_look_distance = 0.5;
+  double explore_beyond = 1.0;  // metres past the window's edge (see explore_to)
+  // the robot explores at most this often in a mission: the window forgets what it leaves, so
+  // where noise closed the way to the goal the robot would go back and forth until it timed out
+  int max_explorations = 4;
+  int explore_patience = 5;  // cycles
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
@@ -438,6 +443,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   perception::Pose2 looked_at = ToPerception(controller.believed_pose());
   bool just_looked = true;
   std::optional<perception::Pose2> fresh_at;  // where the grid was last weakened
+  // where the robot explores to, beyond the window's edge that nav::PlanBeyond led to
+  std::optional<Eigen::Vector2d> explore_to;
+  double nearest_to_goal = std::numeric_limits<double>::infinity();  // believed, so far
+  int explorations = 0;
+  double explore_best = 0;  // the nearest the robot has been to explore_to
+  int explore_stalls = 0;   // cycles since it last got min_approach nearer
   while (true) {
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
@@ -454,6 +465,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
     // plan from where odometry says the robot is
     const perception::Pose2 believed = ToPerception(controller.believed_pose());
+    nearest_to_goal =
+        std::min(nearest_to_goal, (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm());
     fog = perception::ComputeFog(perception_params.map, maps);
     if (controller.mode() == sim::Mode::kStanding) {
       MarkFloorUnderFeet(planner_params, believed, believed_floor_z, &fog);
@@ -486,8 +499,21 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     timing["planning"].push_back(Ms(start));
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
+    // exploring goes on while the map's ways to the goal come and go (they may lead through
+    // cells not yet seen), until the robot is within explore_beyond of where it explores to or
+    // has not got nearer to it for explore_patience cycles
+    if (explore_to) {
+      const double d = (Eigen::Vector2d(believed.x, believed.y) - *explore_to).norm();
+      explore_stalls = d < explore_best - limits.min_approach ? 0 : explore_stalls + 1;
+      explore_best = std::min(explore_best, d);
+      if (d < limits.explore_beyond || explore_stalls > limits.explore_patience) {
+        explore_to.reset();
+      }
+    }
     if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
-      if (!just_looked) {
+      // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
+      // afresh only once that way ends (below)
+      if (!just_looked && !explore_to) {
         look_around();
         looked_at = believed;
         just_looked = true;
@@ -495,13 +521,18 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
       // no way even after looking around: get as near the goal as the map allows and look
       // again from there (what was seen from afar may be wrong), unless that gains nothing
-      const double to_goal = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
-      nav::PlanResult toward =
-          nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
-      bool nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
-                    (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
-                     scenario.goal)
-                            .norm() < to_goal - limits.min_approach;
+      // (once it has explored: over the nearest it has been, else it would only go back)
+      const double here = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
+      const double to_goal = explorations > 0 ? std::min(nearest_to_goal, here) : here;
+      nav::PlanResult toward;
+      bool nearer = false;
+      if (!explore_to) {
+        toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
+        nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
+                 (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
+                  scenario.goal)
+                         .norm() < to_goal - limits.min_approach;
+      }
       // crawling with no way on: beyond a table top as thick as the eyes are high the headroom
       // stays unseen from below, so the robot may get up where the map holds no ceiling, until
       // it stands again
@@ -516,14 +547,45 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           nearer = true;
         }
       }
-      if (!nearer && (!fresh_at || std::hypot(believed.x - fresh_at->x, believed.y - fresh_at->y) >
-                                       limits.fresh_look_distance)) {
+      if (!nearer && !explore_to &&
+          (!fresh_at || std::hypot(believed.x - fresh_at->x, believed.y - fresh_at->y) >
+                            limits.fresh_look_distance)) {
         for (float& l : maps.log_odds) l *= float(limits.fresh_look_keep);
         look_around();
         looked_at = believed;
         fresh_at = believed;
         just_looked = true;
         continue;
+      }
+      // still no way: the goal's region may be joined beyond the map window (a wall whose end
+      // lies outside it), so explore: to the window's edge where that region meets it, then on
+      // to explore_beyond past where that edge was (the window moves with the robot and forgets
+      // what it leaves behind, so a new choice each cycle would go back and forth). Where that
+      // way ends, the robot looks around (as above) and chooses again, or gives up.
+      if (!nearer && explore_to) {
+        const double to_target = (Eigen::Vector2d(believed.x, believed.y) - *explore_to).norm();
+        toward = nav::PlanToward(fog, believed, *explore_to, planner_params, posture);
+        nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
+                 (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
+                  *explore_to)
+                         .norm() < to_target - limits.min_approach;
+        if (!nearer) {
+          explore_to.reset();
+          continue;
+        }
+      } else if (!nearer && explorations < limits.max_explorations) {
+        nav::PlanResult edge =
+            nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
+        if (edge.status == nav::PlanStatus::kOk && edge.path.size() >= 2) {
+          const Eigen::Vector2d from(believed.x, believed.y);
+          const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
+          explore_to = end + (end - from).normalized() * limits.explore_beyond;
+          explore_best = (*explore_to - from).norm();
+          explore_stalls = 0;
+          ++explorations;
+          toward = std::move(edge);
+          nearer = true;
+        }
       }
       if (!nearer) {
         failure = "no_path";

@@ -69,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(Missions, Suite,
                                            "table", "low_table", "drop_off", "enclosed", "slalom",
                                            "turn_first", "noisy_odometry", "goal_at_wall",
                                            "noisy_gap", "wall_ahead", "course_shifted",
-                                           "turned_stairs", "thick_table"));
+                                           "turned_stairs", "thick_table", "long_wall"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
