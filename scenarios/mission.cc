@@ -465,8 +465,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
     // plan from where odometry says the robot is
     const perception::Pose2 believed = ToPerception(controller.believed_pose());
-    nearest_to_goal =
-        std::min(nearest_to_goal, (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm());
+    const Eigen::Vector2d at(believed.x, believed.y);
+    nearest_to_goal = std::min(nearest_to_goal, (at - scenario.goal).norm());
     fog = perception::ComputeFog(perception_params.map, maps);
     if (controller.mode() == sim::Mode::kStanding) {
       MarkFloorUnderFeet(planner_params, believed, believed_floor_z, &fog);
@@ -503,7 +503,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // cells not yet seen), until the robot is within explore_beyond of where it explores to or
     // has not got nearer to it for explore_patience cycles
     if (explore_to) {
-      const double d = (Eigen::Vector2d(believed.x, believed.y) - *explore_to).norm();
+      const double d = (at - *explore_to).norm();
       explore_stalls = d < explore_best - limits.min_approach ? 0 : explore_stalls + 1;
       explore_best = std::min(explore_best, d);
       if (d < limits.explore_beyond || explore_stalls > limits.explore_patience) {
@@ -522,16 +522,20 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // no way even after looking around: get as near the goal as the map allows and look
       // again from there (what was seen from afar may be wrong), unless that gains nothing
       // (once it has explored: over the nearest it has been, else it would only go back)
-      const double here = (Eigen::Vector2d(believed.x, believed.y) - scenario.goal).norm();
-      const double to_goal = explorations > 0 ? std::min(nearest_to_goal, here) : here;
+      // whether a plan leads min_approach nearer to `target` than `distance`
+      auto leads_nearer = [&](const nav::PlanResult& p, const Eigen::Vector2d& target,
+                              double distance) {
+        if (p.status != nav::PlanStatus::kOk || p.path.size() < 2) return false;
+        const Eigen::Vector2d end(p.path.back().pose_G.x, p.path.back().pose_G.y);
+        return (end - target).norm() < distance - limits.min_approach;
+      };
+      const double here = (at - scenario.goal).norm();
       nav::PlanResult toward;
       bool nearer = false;
       if (!explore_to) {
         toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
-        nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
-                 (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
-                  scenario.goal)
-                         .norm() < to_goal - limits.min_approach;
+        nearer = leads_nearer(toward, scenario.goal,
+                              explorations > 0 ? std::min(nearest_to_goal, here) : here);
       }
       // crawling with no way on: beyond a table top as thick as the eyes are high the headroom
       // stays unseen from below, so the robot may get up where the map holds no ceiling, until
@@ -563,12 +567,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // what it leaves behind, so a new choice each cycle would go back and forth). Where that
       // way ends, the robot looks around (as above) and chooses again, or gives up.
       if (!nearer && explore_to) {
-        const double to_target = (Eigen::Vector2d(believed.x, believed.y) - *explore_to).norm();
         toward = nav::PlanToward(fog, believed, *explore_to, planner_params, posture);
-        nearer = toward.status == nav::PlanStatus::kOk && toward.path.size() >= 2 &&
-                 (Eigen::Vector2d(toward.path.back().pose_G.x, toward.path.back().pose_G.y) -
-                  *explore_to)
-                         .norm() < to_target - limits.min_approach;
+        nearer = leads_nearer(toward, *explore_to, (at - *explore_to).norm());
         if (!nearer) {
           explore_to.reset();
           continue;
@@ -577,10 +577,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         nav::PlanResult edge =
             nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
         if (edge.status == nav::PlanStatus::kOk && edge.path.size() >= 2) {
-          const Eigen::Vector2d from(believed.x, believed.y);
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
-          explore_to = end + (end - from).normalized() * limits.explore_beyond;
-          explore_best = (*explore_to - from).norm();
+          explore_to = end + (end - at).normalized() * limits.explore_beyond;
+          explore_best = (*explore_to - at).norm();
           explore_stalls = 0;
           ++explorations;
           toward = std::move(edge);
