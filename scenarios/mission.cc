@@ -449,6 +449,17 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   int explorations = 0;
   double explore_best = 0;  // the nearest the robot has been to explore_to
   int explore_stalls = 0;   // cycles since it last got min_approach nearer
+  // whether a plan moves the robot at all, and whether it leads min_approach nearer to `target`
+  // than `distance`
+  auto moves = [](const nav::PlanResult& p) {
+    return p.status == nav::PlanStatus::kOk && p.path.size() >= 2;
+  };
+  auto leads_nearer = [&](const nav::PlanResult& p, const Eigen::Vector2d& target,
+                          double distance) {
+    if (!moves(p)) return false;
+    const Eigen::Vector2d end(p.path.back().pose_G.x, p.path.back().pose_G.y);
+    return (end - target).norm() < distance - limits.min_approach;
+  };
   while (true) {
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
@@ -465,8 +476,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
     // plan from where odometry says the robot is
     const perception::Pose2 believed = ToPerception(controller.believed_pose());
-    const Eigen::Vector2d at(believed.x, believed.y);
-    nearest_to_goal = std::min(nearest_to_goal, (at - scenario.goal).norm());
+    const Eigen::Vector2d position(believed.x, believed.y);
+    nearest_to_goal = std::min(nearest_to_goal, (position - scenario.goal).norm());
     fog = perception::ComputeFog(perception_params.map, maps);
     if (controller.mode() == sim::Mode::kStanding) {
       MarkFloorUnderFeet(planner_params, believed, believed_floor_z, &fog);
@@ -490,9 +501,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           std::abs(WrapAngle(at.pose_G.yaw - believed.yaw)) < 0.05) {
         nav::PlanResult rest =
             nav::ContinuePlan(fog, last_plan, last_plan_at, believed, scenario.goal, used);
-        if (rest.status == nav::PlanStatus::kOk && rest.path.size() >= 2 &&
-            rest.cost <= plan.cost + std::max(limits.keep_plan_margin,
-                                              limits.keep_plan_share * plan.cost)) {
+        if (moves(rest) && rest.cost <= plan.cost + std::max(limits.keep_plan_margin,
+                                                             limits.keep_plan_share * plan.cost)) {
           plan = std::move(rest);
         }
       }
@@ -503,14 +513,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // cells not yet seen), until the robot is within explore_beyond of where it explores to or
     // has not got nearer to it for explore_patience cycles
     if (explore_to) {
-      const double d = (at - *explore_to).norm();
+      const double d = (position - *explore_to).norm();
       explore_stalls = d < explore_best - limits.min_approach ? 0 : explore_stalls + 1;
       explore_best = std::min(explore_best, d);
       if (d < limits.explore_beyond || explore_stalls > limits.explore_patience) {
         explore_to.reset();
       }
     }
-    if (plan.status != nav::PlanStatus::kOk || plan.path.size() < 2) {
+    if (!moves(plan)) {
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
@@ -522,14 +532,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // no way even after looking around: get as near the goal as the map allows and look
       // again from there (what was seen from afar may be wrong), unless that gains nothing
       // (once it has explored: over the nearest it has been, else it would only go back)
-      // whether a plan leads min_approach nearer to `target` than `distance`
-      auto leads_nearer = [&](const nav::PlanResult& p, const Eigen::Vector2d& target,
-                              double distance) {
-        if (p.status != nav::PlanStatus::kOk || p.path.size() < 2) return false;
-        const Eigen::Vector2d end(p.path.back().pose_G.x, p.path.back().pose_G.y);
-        return (end - target).norm() < distance - limits.min_approach;
-      };
-      const double here = (at - scenario.goal).norm();
+      const double here = (position - scenario.goal).norm();
       nav::PlanResult toward;
       bool nearer = false;
       if (!explore_to) {
@@ -545,7 +548,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         nav::PlannerParams unseen = planner_params;
         unseen.get_up_under_seen_headroom = false;
         nav::PlanResult up = PlanToGoal(fog, believed, scenario, unseen, posture);
-        if (up.status == nav::PlanStatus::kOk && up.path.size() >= 2) {
+        if (moves(up)) {
           planner_params = unseen;
           toward = std::move(up);
           nearer = true;
@@ -568,7 +571,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // way ends, the robot looks around (as above) and chooses again, or gives up.
       if (!nearer && explore_to) {
         toward = nav::PlanToward(fog, believed, *explore_to, planner_params, posture);
-        nearer = leads_nearer(toward, *explore_to, (at - *explore_to).norm());
+        nearer = leads_nearer(toward, *explore_to, (position - *explore_to).norm());
         if (!nearer) {
           explore_to.reset();
           continue;
@@ -576,10 +579,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       } else if (!nearer && explorations < limits.max_explorations) {
         nav::PlanResult edge =
             nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
-        if (edge.status == nav::PlanStatus::kOk && edge.path.size() >= 2) {
+        if (moves(edge)) {
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
-          explore_to = end + (end - at).normalized() * limits.explore_beyond;
-          explore_best = (*explore_to - at).norm();
+          explore_to = end + (end - position).normalized() * limits.explore_beyond;
+          explore_best = (*explore_to - position).norm();
           explore_stalls = 0;
           ++explorations;
           toward = std::move(edge);
