@@ -507,30 +507,38 @@ void Lattice::ComputeCellCosts() {
 
 void Lattice::ComputeFloorHeights() {
   // known floor heights; unknown cells take the height of the nearest known floor (breadth
-  // first over unknown cells), so a step hidden by an unknown cell is still seen as a step
+  // first over unknown cells), so a step hidden by an unknown cell is still seen as a step.
+  // Walkable cells (floor, stairs, tunnel) fill first; border cells fill only the unknown cells
+  // that no walkable cell reaches: a border cell is the rim of a height change, so the unknown
+  // cells beyond it (behind a wall whose top was seen) lie on another level than the rim
   const perception::GridWindow& w = fog_.window;
   const size_t n = size_t(num_cells_);
   floor_h_.assign(n, -std::numeric_limits<float>::infinity());
-  std::vector<int> frontier;
+  std::vector<int> walkable, border;
   for (size_t i = 0; i < n; ++i) {
     const CellType t = fog_.type[i];
-    if (t != CellType::kObstacle && t != CellType::kUnknown && std::isfinite(fog_.height[i])) {
-      floor_h_[i] = fog_.height[i];
-      frontier.push_back(int(i));
+    if (t == CellType::kObstacle || t == CellType::kUnknown || !std::isfinite(fog_.height[i])) {
+      continue;
     }
+    floor_h_[i] = fog_.height[i];
+    (t == CellType::kBorder ? border : walkable).push_back(int(i));
   }
-  for (size_t next = 0; next < frontier.size(); ++next) {
-    const int i = frontier[next];
-    const int ix = i % w.size_x, iy = i / w.size_x;
-    const int nx[4] = {ix + 1, ix - 1, ix, ix}, ny[4] = {iy, iy, iy + 1, iy - 1};
-    for (int k = 0; k < 4; ++k) {
-      if (!w.Contains(nx[k], ny[k])) continue;
-      const size_t j = size_t(w.Index(nx[k], ny[k]));
-      if (fog_.type[j] != CellType::kUnknown || std::isfinite(floor_h_[j])) continue;
-      floor_h_[j] = floor_h_[size_t(i)];
-      frontier.push_back(int(j));
+  auto fill_from = [&](std::vector<int> frontier) {
+    for (size_t next = 0; next < frontier.size(); ++next) {
+      const int i = frontier[next];
+      const int ix = i % w.size_x, iy = i / w.size_x;
+      const int nx[4] = {ix + 1, ix - 1, ix, ix}, ny[4] = {iy, iy, iy + 1, iy - 1};
+      for (int k = 0; k < 4; ++k) {
+        if (!w.Contains(nx[k], ny[k])) continue;
+        const size_t j = size_t(w.Index(nx[k], ny[k]));
+        if (fog_.type[j] != CellType::kUnknown || std::isfinite(floor_h_[j])) continue;
+        floor_h_[j] = floor_h_[size_t(i)];
+        frontier.push_back(int(j));
+      }
     }
-  }
+  };
+  fill_from(std::move(walkable));
+  fill_from(std::move(border));
 }
 
 void Lattice::ComputeLevelRanges() {

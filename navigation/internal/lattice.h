@@ -208,7 +208,8 @@ class Lattice {
   bool has_end_ = false;
   int num_cells_ = 0;
 
-  std::vector<float> floor_h_;  // per cell: floor height, unknown cells filled from the nearest
+  // per cell: floor height, unknown cells filled from the nearest walkable cell (else border)
+  std::vector<float> floor_h_;
   // per cell: lowest and highest known floor height (cells neither unknown nor obstacle, with a
   // finite FOG height) in the square around it that holds the standing footprint and body;
   // +inf / -inf if none

@@ -709,6 +709,22 @@ TEST(Planner, SeesAStepHiddenByUnknownCells) {
   EXPECT_EQ(Count(climb, Move::kStairsUp), 1) << Moves(climb);
 }
 
+TEST(Planner, UnknownCellsBehindAWallWhoseTopWasSeenLieAtTheFloorAroundIt) {
+  // a 0.3 m divider whose top the map holds as border, open beyond y = 2.2; everything behind
+  // it unknown. The unknown cells there take the floor's height, not the top's, so the way
+  // round the divider's end leads to the goal behind it
+  Fog fog = FlatFog(75, 75, 0.04);
+  FillBox(&fog, 1.5, 0.0, 3.0, 3.0, CellType::kUnknown, -INFINITY);
+  FillBox(&fog, 1.4, 0.0, 1.52, 2.2, CellType::kBorder, 0.30f);
+  const PlanResult r = Plan(fog, {0.40, 0.80, 0.0}, {2.20, 0.80}, PlannerParams());
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_TRUE(r.reaches_goal);
+  EXPECT_EQ(Count(r, Move::kStairsUp) + Count(r, Move::kStairsDown), 0) << Moves(r);
+  double max_y = 0;
+  for (const PathPose& q : r.path) max_y = std::max(max_y, q.pose_G.y);
+  EXPECT_GT(max_y, 2.2);  // round the end, not over the top
+}
+
 // A raised platform (10 cm) at the middle of open floor: its rim is border.
 Fog RaisedPlatform() {
   Fog fog = FlatFog(75, 75, 0.04);  // 3 m x 3 m
