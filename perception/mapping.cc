@@ -98,11 +98,16 @@ size_t MapState::MemoryBytes() const {
 
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
                                        const PlaneSet& planes, const Eigen::Isometry3d& X_GC,
-                                       const std::vector<OrientedBox>& body_G) {
+                                       const std::vector<OrientedBox>& body_G,
+                                       const Image<uint8_t>* rims) {
   const bool have_labels = !planes.labels.empty();
   if (have_labels) {
     Check(planes.labels.width == points_C.width && planes.labels.height == points_C.height,
           "LabelPoints: label image and point image differ in size");
+  }
+  if (rims != nullptr) {
+    Check(rims->width == points_C.width && rims->height == points_C.height,
+          "LabelPoints: rim image and point image differ in size");
   }
   const int num_planes = int(planes.planes.size());
   const Eigen::Matrix3f R_GC = X_GC.linear().cast<float>();
@@ -125,6 +130,8 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
   out.reserve(n);
   std::vector<int> plane_of;  // plane index of each kept point, -1 none
   plane_of.reserve(n);
+  std::vector<uint8_t> on_rim;  // of each kept point
+  on_rim.reserve(n);
   std::vector<PlaneMoments> moments(static_cast<size_t>(num_planes));
   for (size_t i = 0; i < n; ++i) {
     const Eigen::Vector3f& p_C = points_C.points[i];
@@ -143,6 +150,7 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     if (label >= 0) moments[size_t(label)].Add(p_G);
     out.push_back({p_G, kNegInf});
     plane_of.push_back(label);
+    on_rim.push_back(rims != nullptr && rims->data[i] != 0);
   }
 
   // floor candidates: horizontal, seen from above (so facing up), at least a sole large
@@ -163,11 +171,16 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     plane_h[size_t(k)] = float(h);
     plane_sigma[size_t(k)] = float(std::max(planes.planes[size_t(k)].rms, params.min_height_sigma));
   }
+  size_t kept = 0;
   for (size_t i = 0; i < out.size(); ++i) {
-    if (plane_of[i] < 0) continue;
-    out[i].h = plane_h[size_t(plane_of[i])];
-    if (out[i].h != kNegInf) out[i].h_sigma = plane_sigma[size_t(plane_of[i])];
+    if (plane_of[i] >= 0) {
+      out[i].h = plane_h[size_t(plane_of[i])];
+      if (out[i].h != kNegInf) out[i].h_sigma = plane_sigma[size_t(plane_of[i])];
+    }
+    if (on_rim[i] && out[i].h == kNegInf) continue;
+    out[kept++] = out[i];
   }
+  out.resize(kept);
   return out;
 }
 

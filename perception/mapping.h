@@ -116,9 +116,14 @@ struct LabelledPoint {
 // the robot's own body `body_G` (boxes in the grid frame from the robot's kinematic pose).
 // `planes.labels` must have the size of `points_C`; label -1 or an empty label image means no
 // plane. Plane normals may point either way; only their axis is used.
+// Extension: where `rims` (the size of `points_C`) is 1, a point lies on the rim of a nearer
+// surface in stereo data (DepthEdgeRims), where its position may be the nearer surface's
+// although it sees the background; it still counts for its plane's height, but is kept only if
+// that plane is a floor candidate, so that fattened stereo puts no obstacles beside objects.
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
                                        const PlaneSet& planes, const Eigen::Isometry3d& X_GC,
-                                       const std::vector<OrientedBox>& body_G);
+                                       const std::vector<OrientedBox>& body_G,
+                                       const Image<uint8_t>* rims = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 // Map parameters.

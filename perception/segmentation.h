@@ -46,6 +46,13 @@ struct StereoParams {
   // streaks of phantom obstacles behind it. Costs a second matching (~2x stereo time).
   bool left_right_check = true;
   double left_right_tolerance = 1.0;  // pixels
+  // Depth-edge rims (DepthEdgeRims): near a depth edge the matching block covers both
+  // surfaces and the nearer one wins, so background pixels beside a foreground object take its
+  // disparity (foreground fattening; both matchings agree, so the left-right check keeps them).
+  // A pixel is on a rim if a disparity at least edge_jump pixels smaller lies within
+  // edge_margin pixels of it along the row; 0 marks nothing.
+  int edge_margin = 3;     // pixels (block_size / 2 + 1)
+  double edge_jump = 1.0;  // pixels; a floor seen from the eyes changes ~0.1 px per row
 };
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
@@ -54,6 +61,12 @@ struct StereoParams {
 // the disparity in pixels (NaN where invalid), the same size as the images.
 PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const CameraIntrinsics& K,
                             const StereoParams& p = {}, Image<float>* disparity_px = nullptr);
+
+// The rims of nearer surfaces in a disparity image (NaN = none), 1 where a pixel is within
+// p.edge_margin pixels along its row of a disparity at least p.edge_jump smaller (or, to its
+// left, of a failed match: the occluded background). Fattened pixels lie there; so do the true
+// edges of nearer surfaces, which cannot be told apart from them.
+Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParams& p = {});
 
 // 3D points from a depth image (metres along the optical axis, NaN or <= 0 = none): pixel (u, v)
 // becomes z * ((u - cx) / fx, (v - cy) / fy, 1); NaN where there is no depth.
@@ -65,6 +78,7 @@ PointImage Subsample2x(const PointImage& points);
 // The same sub-sampling for label images (e.g. ground-truth surface ids): output (u, v) is
 // input (2u, 2v).
 LabelImage Subsample2x(const LabelImage& labels);
+Image<uint8_t> Subsample2x(const Image<uint8_t>& mask);
 // The same sub-sampling for depth images: output (u, v) is input (2u, 2v).
 DepthImage Subsample2x(const DepthImage& depth);
 // Intrinsics of the 2x sub-sampled image: fx / 2, fy / 2, cx / 2, cy / 2, half the size.

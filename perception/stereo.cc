@@ -162,6 +162,40 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
   return points;
 }
 
+Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParams& p) {
+  // per row: the smallest disparity within edge_margin (after a median of three, so that one
+  // stray far match marks nothing). Failed pixels to the left take the disparity left of them:
+  // left of a nearer surface lies background that the right eye cannot see (the left-right
+  // check fails there). Failed pixels to the right count as near.
+  const int w = disparity_px.width, h = disparity_px.height, m = p.edge_margin;
+  Image<uint8_t> rims(w, h, 0);
+  if (m <= 0) return rims;
+  const float jump = float(p.edge_jump);
+  constexpr float kNear = std::numeric_limits<float>::infinity();
+  std::vector<float> median(static_cast<size_t>(w)), from_left(static_cast<size_t>(w));
+  for (int v = 0; v < h; ++v) {
+    const float* d = &disparity_px.data[size_t(v) * size_t(w)];
+    auto near_at = [&](int u) { return std::isfinite(d[u]) ? d[u] : kNear; };
+    for (int u = 0; u < w; ++u) {
+      const float a = near_at(std::max(u - 1, 0)), b = near_at(u),
+                  c = near_at(std::min(u + 1, w - 1));
+      median[size_t(u)] = std::max(std::min(a, b), std::min(std::max(a, b), c));
+      from_left[size_t(u)] = std::isfinite(d[u]) ? median[size_t(u)]
+                             : u > 0             ? from_left[size_t(u) - 1]
+                                                 : kNear;
+    }
+    for (int u = 0; u < w; ++u) {
+      if (!std::isfinite(d[u])) continue;
+      float far = d[u];
+      for (int k = std::max(0, u - m); k <= std::min(w - 1, u + m); ++k) {
+        far = std::min(far, k < u ? from_left[size_t(k)] : median[size_t(k)]);
+      }
+      rims.at(u, v) = d[u] - far >= jump;
+    }
+  }
+  return rims;
+}
+
 PointImage DepthPointImage(const DepthImage& depth_m, const CameraIntrinsics& K) {
   PointImage points(depth_m.width, depth_m.height);
   for (int v = 0; v < depth_m.height; ++v) {
@@ -183,6 +217,8 @@ PointImage Subsample2x(const PointImage& points) {
 }
 
 LabelImage Subsample2x(const LabelImage& labels) { return SubsampleImage(labels); }
+
+Image<uint8_t> Subsample2x(const Image<uint8_t>& mask) { return SubsampleImage(mask); }
 
 DepthImage Subsample2x(const DepthImage& depth) { return SubsampleImage(depth); }
 

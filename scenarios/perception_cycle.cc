@@ -106,7 +106,14 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   perception::MapInput input;
   input.robot_G = result.robot_G;
   input.p_GC = X_GC.translation();
-  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G);
+  // stereo: rim points of nearer surfaces give no obstacles (they may be fattened)
+  perception::Image<uint8_t> rims;
+  if (mode == DepthMode::kStereo) {
+    rims = perception::DepthEdgeRims(result.disparity, params.stereo);
+    if (params.subsample) rims = perception::Subsample2x(rims);
+  }
+  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G,
+                                         rims.empty() ? nullptr : &rims);
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);
   result.labelled_G = std::move(input.points);

@@ -168,5 +168,28 @@ TEST(LabelPoints, InvalidAndFarPointsAreDroppedAndMissingLabelsMeanNoPlane) {
   EXPECT_NEAR(points[0].p_G.z(), 1.0f, 1e-6);
 }
 
+// Points on the rims of nearer surfaces (stereo fattening) keep their place only on floor
+// candidates: the box's side is dropped where marked, the floor and the box top are kept.
+TEST(LabelPoints, RimPointsAreKeptOnlyOnFloorCandidates) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.8, 1.2, -0.2, 0.2, 0.0, 0.2)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {1.0, 0, 0});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  const std::vector<LabelledPoint> all =
+      LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {});
+  Image<uint8_t> everywhere(kK.width_px, kK.height_px, 1);
+  const std::vector<LabelledPoint> kept =
+      LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {}, &everywhere);
+  int floor_candidates = 0;
+  for (const LabelledPoint& lp : all) floor_candidates += std::isfinite(lp.h);
+  EXPECT_GT(floor_candidates, 1000);
+  EXPECT_GT(all.size(), size_t(floor_candidates) + 100);  // the box's side
+  ASSERT_EQ(kept.size(), size_t(floor_candidates));
+  for (const LabelledPoint& lp : kept) EXPECT_TRUE(std::isfinite(lp.h));
+  // no rims: every point is kept
+  const Image<uint8_t> nowhere(kK.width_px, kK.height_px, 0);
+  EXPECT_EQ(LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {}, &nowhere).size(),
+            all.size());
+}
+
 }  // namespace
 }  // namespace fognav::perception

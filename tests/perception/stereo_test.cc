@@ -10,10 +10,12 @@
 namespace fognav::perception {
 namespace {
 
+using internal::RenderScene;
 using internal::RenderStereoPair;
 using internal::Scene;
 using internal::SceneCamera;
 using internal::SceneIntrinsics;
+using internal::SceneView;
 
 // A textured fronto-parallel wall at distance z_m in front of a level camera.
 Scene Wall(double z_m) {
@@ -116,6 +118,57 @@ TEST(Stereo, LeftRightCheckRejectsMatchesBetweenUnrelatedImages) {
   std::printf("unrelated pair: %.1f %% of pixels with points, %.1f %% without the check\n",
               100 * with_check, 100 * without);
   EXPECT_LT(with_check, 0.5 * without);
+}
+
+// Two posts 0.2 m apart at 1.2 m in front of a wall at 3 m. Near the posts' sides the matching
+// block covers post and wall, and the nearer post wins: wall pixels beside a post take its
+// disparity (foreground fattening), which would put phantom obstacles into the gap. They lie on
+// the posts' rims.
+TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
+  Scene scene;
+  scene.floor = false;
+  scene.boxes.push_back({Eigen::Vector3d(3.0, -20, -20), Eigen::Vector3d(4.0, 20, 20)});
+  scene.boxes.push_back({Eigen::Vector3d(1.2, -0.4, -20), Eigen::Vector3d(1.3, -0.1, 20)});
+  scene.boxes.push_back({Eigen::Vector3d(1.2, 0.1, -20), Eigen::Vector3d(1.3, 0.4, 20)});
+  const auto K = SceneIntrinsics(176, 144);
+  const Eigen::Isometry3d X_WC = SceneCamera(0, 0, 0, 0);
+  RgbImage left, right;
+  RenderStereoPair(scene, K, X_WC, &left, &right);
+  const SceneView truth = RenderScene(scene, K, X_WC);
+  Image<float> disparity;
+  StereoPointImage(left, right, K, StereoParams(), &disparity);
+  const Image<uint8_t> rims = DepthEdgeRims(disparity);
+  int fattened = 0, fattened_off_rims = 0, post = 0, post_off_rims = 0;
+  for (size_t i = 0; i < disparity.data.size(); ++i) {
+    if (!std::isfinite(disparity.data[i])) continue;
+    const bool on_post = truth.surface.data[i] >= 7;  // surface ids of boxes 1 and 2
+    const double d_true = K.fx * K.baseline / truth.depth.data[i];
+    const bool fat = !on_post && disparity.data[i] > d_true + 1.0;
+    fattened += fat;
+    fattened_off_rims += fat && !rims.data[i];
+    post += on_post;
+    post_off_rims += on_post && !rims.data[i];
+  }
+  std::printf(
+      "fattened wall pixels: %d, %d of them off the rims; post pixels with a point: %d, "
+      "%d of them off the rims\n",
+      fattened, fattened_off_rims, post, post_off_rims);
+  EXPECT_GT(fattened, 50);  // the effect is there
+  EXPECT_LE(fattened_off_rims, fattened / 20);
+  EXPECT_GT(post_off_rims, post * 3 / 4);  // the posts' middles are no rims
+  // no rims on the wall alone, nor without a margin
+  RgbImage wall_left, wall_right;
+  RenderStereoPair(Wall(3.0), K, X_WC, &wall_left, &wall_right);
+  Image<float> wall_disparity;
+  StereoPointImage(wall_left, wall_right, K, StereoParams(), &wall_disparity);
+  int wall_rims = 0;
+  for (uint8_t r : DepthEdgeRims(wall_disparity).data) wall_rims += r;
+  EXPECT_LT(wall_rims, 176 * 144 / 100);
+  StereoParams no_margin;
+  no_margin.edge_margin = 0;
+  int unmarked = 0;
+  for (uint8_t r : DepthEdgeRims(disparity, no_margin).data) unmarked += r;
+  EXPECT_EQ(unmarked, 0);
 }
 
 TEST(Stereo, UntexturedPairGivesNoPoints) {
