@@ -18,9 +18,12 @@ namespace fognav::perception {
 // renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m).
 struct StereoParams {
   int min_disparity = 0;          // pixels
-  int num_disparities = 64;       // search range in pixels, a multiple of 16 (nearest 0.17 m on
-                                  // the 176-pixel, 45-degree, 5 cm sensor; a surface nearer than
-                                  // that matches garbage, which left_right_check mostly removes)
+  int num_disparities = 128;      // search range in pixels, a multiple of 16 (nearest 0.083 m
+                                  // on the 176-pixel, 45-degree, 5 cm sensor; a surface nearer
+                                  // than that matches garbage, which left_right_check does not
+                                  // always remove: 64 (0.17 m) put phantom obstacles under a
+                                  // table whose edge the standing robot's eyes came within
+                                  // 0.13 m of)
   int block_size = 5;             // matching block side in pixels, odd
   int p1 = 0;                     // SGM small-change penalty; 0 = 8 * 3 * block_size^2
   int p2 = 0;                     // SGM large-change penalty; 0 = 32 * 3 * block_size^2

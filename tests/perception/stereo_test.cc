@@ -164,6 +164,25 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   int wall_rims = 0;
   for (uint8_t r : DepthEdgeRims(wall_disparity).data) wall_rims += r;
   EXPECT_LT(wall_rims, 176 * 144 / 100);
+  // a side wall 0.25 m beside the eye, seen at a slant from 0.2 m to 3 m away: its disparity
+  // falls by 0.2 px per pixel along the rows, in terraces; most of it is no rim
+  Scene corridor = Wall(3.0);
+  corridor.boxes.push_back({Eigen::Vector3d(0.2, 0.25, -20), Eigen::Vector3d(3.0, 0.5, 20)});
+  const SceneView corridor_truth = RenderScene(corridor, K, X_WC);
+  RgbImage corridor_left, corridor_right;
+  RenderStereoPair(corridor, K, X_WC, &corridor_left, &corridor_right);
+  Image<float> corridor_disparity;
+  StereoPointImage(corridor_left, corridor_right, K, StereoParams(), &corridor_disparity);
+  const Image<uint8_t> corridor_rims = DepthEdgeRims(corridor_disparity);
+  int side = 0, side_rims = 0;
+  for (size_t i = 0; i < corridor_rims.data.size(); ++i) {
+    if (corridor_truth.surface.data[i] < 7 || !std::isfinite(corridor_disparity.data[i])) continue;
+    ++side;
+    side_rims += corridor_rims.data[i];
+  }
+  std::printf("slanted side wall: %d of %d pixels on rims\n", side_rims, side);
+  EXPECT_GT(side, 2000);
+  EXPECT_LT(side_rims, side / 5);
   StereoParams no_margin;
   no_margin.edge_margin = 0;
   int unmarked = 0;
