@@ -12,6 +12,7 @@ namespace fognav::perception {
 namespace {
 
 constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // Always-on invariant check.
 void Check(bool ok, const char* what) {
@@ -90,7 +91,8 @@ double MapState::LayerBottom(int iz) const { return z_min + iz * window.resoluti
 
 size_t MapState::MemoryBytes() const {
   return log_odds.capacity() * sizeof(float) + floor.capacity() * sizeof(float) +
-         floor_var.capacity() * sizeof(float) +
+         (floor_var.capacity() + obstacle_range.capacity() + free_range.capacity()) *
+             sizeof(float) +
          marks.capacity() + scratch.capacity() * sizeof(float) +
          (floor_local.capacity() + floor_frame_h.capacity()) * sizeof(float) +
          floor_frame_marks.capacity();
@@ -205,6 +207,8 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   state->log_odds.assign(cells3, 0.0f);
   state->floor.assign(size_t(state->window.NumCells()), kNegInf);
   state->floor_var.assign(size_t(state->window.NumCells()), 0.0f);
+  state->obstacle_range.assign(size_t(state->window.NumCells()), kInf);
+  state->free_range.assign(size_t(state->window.NumCells()), kInf);
   state->marks.assign(cells3, 0);
   state->scratch.assign(cells3, 0.0f);
 }
@@ -227,6 +231,7 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
   std::fill(s.scratch.begin(), s.scratch.end(), 0.0f);
   std::vector<float> floor_next(s.floor.size(), kNegInf);
   std::vector<float> var_next(s.floor.size(), 0.0f);
+  std::vector<float> range_next(s.floor.size(), kInf);
   const int x_begin = std::max(0, -dx), x_end = std::min(nx, nx - dx);
   for (int iy = std::max(0, -dy); iy < std::min(ny, ny - dy); ++iy) {
     if (x_begin >= x_end) break;
@@ -236,10 +241,12 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
     std::copy_n(s.log_odds.begin() + from * nz, len * nz, s.scratch.begin() + to * nz);
     std::copy_n(s.floor.begin() + from, len, floor_next.begin() + to);
     std::copy_n(s.floor_var.begin() + from, len, var_next.begin() + to);
+    std::copy_n(s.obstacle_range.begin() + from, len, range_next.begin() + to);
   }
   s.log_odds.swap(s.scratch);
   s.floor.swap(floor_next);
   s.floor_var.swap(var_next);
+  s.obstacle_range.swap(range_next);
   s.window = next;
 }
 

@@ -151,6 +151,15 @@ struct OccupancyParams {
   // (else as crossed, if a ray crossed it), so that a stray stereo point does not make an
   // obstacle; 1 = the paper.
   int min_hits_per_frame = 1;
+  // Extension: stereo depth errors grow with the square of the range, so obstacle evidence
+  // seen only from afar may be a phantom (at 2.5 m a 0.3 px error moves a wall 0.2 m). Each
+  // column keeps the smallest range of the points that ended in it off its floor;
+  // a cell crossed by a ray at most 1 / overrule_ratio of that range is set free at once
+  // (log-odds of one miss) instead of adding a miss. 0 = the paper's update. Only cells whose
+  // bottom lies below overrule_below (h_tunnel): rays to a ceiling's farther parts graze the
+  // layer of its nearer ones, which would lose a table's underside.
+  double overrule_ratio = 0.0;
+  double overrule_below = 0.30;
   // P_occ of eq. (19, 22, 23): a cell is occupied if its probability exceeds this.
   double p_occ = 0.6;
 };
@@ -258,6 +267,9 @@ struct MapState {
   std::vector<float> floor;
   // Variance of each floor height in m^2; 0 where unknown or where heights had no sigma.
   std::vector<float> floor_var;
+  // Per 2D cell: the smallest distance (metres) from the camera of the points that ended in
+  // its column off its floor (OccupancyParams::overrule_ratio); +infinity if none.
+  std::vector<float> obstacle_range;
   // Scratch, reused between updates: per-cell marks of the current frame, scroll buffer, floor
   // heights in layer units.
   std::vector<uint8_t> marks;
@@ -265,6 +277,7 @@ struct MapState {
   std::vector<float> floor_local;
   std::vector<float> floor_frame_h;  // per cell, the last plane height fused in this frame
   std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
+  std::vector<float> free_range;           // per 2D cell: the nearest a ray crossed it this frame
 
   bool Empty() const { return log_odds.empty(); }
   // Occupancy probability of local cell (ix, iy, iz) (must be inside).

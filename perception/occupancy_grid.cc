@@ -71,11 +71,33 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   for (size_t i = 0; i < s.floor.size(); ++i) floor_local[i] = (s.floor[i] - float(s.z_min)) * inv_res;
   const float tol_local = float(floor_tolerance) * inv_res;
 
+  const bool overrule = params.overrule_ratio > 0;
+  // whether height z (layer units) in column c lies off its floor: more than the tolerance
+  // from a known floor, else above the two layers a floor up to h_stairs high may fill
+  auto off_floor = [&](size_t c, float z) {
+    const float f = floor_local[c];
+    return std::isfinite(f) ? std::abs(z - f) > tol_local + 0.5f : z >= 2.0f;
+  };
+  const size_t columns = size_t(nx) * size_t(ny);
+  if (overrule) {
+    s.obstacle_range.resize(columns, kInf);
+    s.free_range.assign(columns, kInf);
+  }
+  const float res = float(s.window.resolution);
+  const Eigen::Vector3f p_GC = input.p_GC.cast<float>();
+
   for (const LabelledPoint& lp : input.points) {
     if (!lp.p_G.allFinite()) continue;
     const Eigen::Vector3f b = (lp.p_G - o_f) * inv_res;
     const bool end_inside = b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
                             b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
+    if (overrule && end_inside) {
+      // obstacle evidence: a point off the column's floor (a raised top's face lies below it)
+      const size_t c = size_t(FastFloor(b.y()) * nx + FastFloor(b.x()));
+      if (off_floor(c, b.z())) {
+        s.obstacle_range[c] = std::min(s.obstacle_range[c], (lp.p_G - p_GC).norm());
+      }
+    }
     // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same cells
     if (end_inside) {
       uint8_t& end_mark =
@@ -124,7 +146,12 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     // and the height of the floor plane the ray ends on: grazing rays to a floor run inside the
     // layer of that floor for a while before they reach it.
     const float h_end = (lp.h - float(s.z_min)) * inv_res;
+    const float metres_per_t = d.norm() * res;
     auto mark_column = [&](float ta, float tb, int hit_layer) {
+      if (overrule && hit_layer < 0) {
+        float& range = s.free_range[size_t(col)];
+        range = std::min(range, ta * metres_per_t);
+      }
       const float za = az + ta * dz, zb = az + tb * dz;
       const float z_low = std::min(za, zb);
       const int lo = std::clamp(int(z_low), 0, nz - 1);
@@ -164,6 +191,23 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   const float l_hit = LogOdds(params.p_hit), l_miss = LogOdds(params.p_miss);
   const float l_min = LogOdds(params.p_min), l_max = LogOdds(params.p_max);
   const int min_hits = std::max(1, params.min_hits_per_frame);
+  if (overrule) {
+    // a near miss overrules obstacle evidence seen only from afar: the cell starts afresh
+    const float ratio = float(params.overrule_ratio);
+    const int below =
+        std::clamp(int(std::ceil((params.overrule_below - s.z_min) / s.window.resolution)), 0, nz);
+    for (size_t c = 0; c < columns; ++c) {
+      if (!(s.free_range[c] * ratio <= s.obstacle_range[c])) continue;
+      for (int iz = 0; iz < below; ++iz) {
+        const size_t i = c * size_t(nz) + size_t(iz);
+        const uint8_t m = marks[i];
+        const bool hit = (m & kMarkHit) && (m / kHitCountStep) >= min_hits;
+        if ((m & kMarkFree) && !hit && s.log_odds[i] > 0 && off_floor(c, float(iz) + 0.5f)) {
+          s.log_odds[i] = 0;
+        }
+      }
+    }
+  }
   float* l = s.log_odds.data();
   const size_t cells = s.log_odds.size();
   size_t i = 0;

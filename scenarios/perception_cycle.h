@@ -18,10 +18,13 @@
 namespace fognav::scenarios {
 
 // The maps of the loop: the paper's, but a cell counts as hit in a frame only if two points end
-// in it (OccupancyParams::min_hits_per_frame), so stray stereo matches make no obstacles.
+// in it (OccupancyParams::min_hits_per_frame), so stray stereo matches make no obstacles, and
+// a ray from less than half the range at which a column's obstacle evidence was seen sets its
+// cells free (OccupancyParams::overrule_ratio), so phantoms seen from afar do not stay.
 inline perception::MapParams MapDefaults() {
   perception::MapParams p;
   p.grid.min_hits_per_frame = 2;
+  p.grid.overrule_ratio = 2.0;
   return p;
 }
 

@@ -223,6 +223,47 @@ TEST(OccupancyGrid, AStrayPointIsNoHitWithTwoHitsPerFrame) {
   EXPECT_GT(paper_state.ProbabilityAt(stray.cast<double>()), paper.grid.p_occ);
 }
 
+// With overrule_ratio, obstacle evidence seen only from afar (a phantom in front of a far wall,
+// saturated over several frames) is set free by one ray that crosses it from less than half
+// that range; evidence also seen from near is not, and the paper's update needs many misses.
+TEST(OccupancyGrid, ANearMissOverrulesObstacleEvidenceSeenOnlyFromAfar) {
+  auto wall_at = [](double x) {
+    std::vector<Eigen::Vector3f> wall;
+    for (double y = -0.3; y <= 0.3; y += 0.01) {
+      for (double z = 0.0; z <= 0.5; z += 0.01) wall.push_back({float(x), float(y), float(z)});
+    }
+    return wall;
+  };
+  const Eigen::Vector3f phantom(1.41f, 0.01f, 0.25f), near_box(0.61f, -0.19f, 0.25f);
+  auto run = [&](double ratio) {
+    MapParams params;
+    params.grid.overrule_ratio = ratio;
+    MapState state;
+    // from 2.6 m and 1.8 m away (camera at x = -1.2): the phantom and a real box, 10 frames
+    std::vector<Eigen::Vector3f> far_view = {phantom, phantom, near_box, near_box};
+    for (int k = 0; k < 10; ++k) {
+      UpdateMaps(params, Frame({}, {-1.2, 0.0, 0.3}, far_view), &state);
+    }
+    // the box seen from near (0.5 m), then one view from x = 0.2 of the wall behind both,
+    // whose rays cross the phantom (1.2 m from the camera) and, one of them, the box's cell
+    // (0.45 m from it)
+    UpdateMaps(params, Frame({}, {0.1, -0.19, 0.25}, {near_box, near_box}), &state);
+    const Eigen::Vector3f camera(0.2f, 0.0f, 0.3f);
+    std::vector<Eigen::Vector3f> behind = wall_at(2.5);
+    behind.push_back(camera + (near_box - camera) * (2.3f / 0.41f));
+    UpdateMaps(params, Frame({}, camera.cast<double>(), behind), &state);
+    return std::make_pair(state.ProbabilityAt(phantom.cast<double>()),
+                          state.ProbabilityAt(near_box.cast<double>()));
+  };
+  const auto [phantom_overruled, box_overruled] = run(2.0);
+  const auto [phantom_paper, box_paper] = run(0.0);
+  EXPECT_LT(phantom_overruled, 0.5);
+  EXPECT_GT(phantom_paper, 0.6);                // one miss leaves saturated evidence occupied
+  EXPECT_NEAR(box_overruled, box_paper, 1e-6);  // seen from near: the same update
+  EXPECT_GT(box_overruled, 0.6);
+  EXPECT_LT(run(0.01).second, 0.5);  // the last view does cross the box's cell
+}
+
 TEST(OccupancyGrid, MapsFitInFourMegabytes) {
   MapParams params;
   MapState state;
