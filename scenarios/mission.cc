@@ -6,14 +6,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "navigation/planner.h"
 #include "perception/step_edge.h"
@@ -63,6 +63,21 @@ struct ExecutionLimits {
   // where noise closed the way to the goal the robot would go back and forth until it timed out
   int max_explorations = 4;
   int explore_patience = 5;  // cycles
+  // Still without a way, the robot plans as if the obstacle and tunnel cells whose obstacle
+  // evidence was seen only from farther than inspect_range (MapState::obstacle_range) were
+  // unknown: stereo errors grow with the square of the range, and a phantom seen from afar can
+  // close a door. If that plan passes such a cell, the robot goes (exploring, at most
+  // max_explorations times in all) to within inspect_reach of the last pose before it, where
+  // near views overrule the far evidence (OccupancyParams::overrule_ratio) or confirm it.
+  double inspect_range = 1.5;
+  double inspect_reach = 0.25;
+  // a robot whose last thrash_cycles positions all lie within thrash_radius of the first of
+  // them, on plans that do not reach the goal, and that got no nearer to the goal than before
+  // them (min_approach), goes back and forth (plans toward a goal beyond the window change as
+  // the window moves with it): once, it looks again and needs a way nearer than it has been;
+  // twice, it has no way (no_path, no_progress) instead of walking until it times out
+  int thrash_cycles = 20;
+  double thrash_radius = 0.6;
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
@@ -162,6 +177,50 @@ nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& 
                                   scenario.goal_tolerance - 0.5 * fog.window.resolution);
   if (used) *used = wider;
   return nav::Plan(fog, start, scenario.goal, wider, posture);
+}
+
+// Where to look from at obstacle evidence seen only from afar (ExecutionLimits::inspect_range):
+// the last pose of a plan on the map with those cells unknown before the plan passes within
+// the body's reach of one of them; nothing if that plan passes none or stays where it is.
+std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
+                                              const perception::MapState& maps,
+                                              const perception::Pose2& believed,
+                                              const Scenario& scenario,
+                                              const nav::PlannerParams& params,
+                                              nav::Posture posture, const ExecutionLimits& limits) {
+  if (maps.obstacle_range.size() != fog.type.size()) return std::nullopt;
+  perception::Fog hopeful = fog;
+  std::vector<Eigen::Vector2d> suspects;
+  const perception::GridWindow& w = fog.window;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      const perception::CellType t = fog.type[i];
+      if ((t != perception::CellType::kObstacle && t != perception::CellType::kTunnel) ||
+          !(maps.obstacle_range[i] > limits.inspect_range)) {
+        continue;
+      }
+      hopeful.type[i] = perception::CellType::kUnknown;
+      hopeful.height[i] = -std::numeric_limits<float>::infinity();
+      suspects.push_back(w.CellCenter(ix, iy));
+    }
+  }
+  if (suspects.empty()) return std::nullopt;
+  const nav::PlanResult plan = PlanToGoal(hopeful, believed, scenario, params, posture);
+  if (plan.status != nav::PlanStatus::kOk) return std::nullopt;
+  // the body's reach: the shoulders standing, head and hands crawling
+  const double reach =
+      std::max(0.5 * params.shoulder_width, params.crawl_offset + 0.5 * params.crawl_length) +
+      params.margin;
+  for (size_t k = 1; k < plan.path.size(); ++k) {
+    const Eigen::Vector2d at(plan.path[k].pose_G.x, plan.path[k].pose_G.y);
+    for (const Eigen::Vector2d& c : suspects) {
+      if ((c - at).norm() > reach) continue;
+      const perception::Pose2& before = plan.path[k - 1].pose_G;
+      return Eigen::Vector2d(before.x, before.y);
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -448,6 +507,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   double nearest_to_goal = std::numeric_limits<double>::infinity();  // believed, so far
   int explorations = 0;
   double explore_best = 0;  // the nearest the robot has been to explore_to
+  double explore_reach = 0;  // exploring ends within this distance of explore_to
+  bool inspecting = false;   // explore_to is where to look at far obstacle evidence from
+  // believed positions of the last cycles (thrash_cycles) and the nearest to the goal so far
+  std::deque<std::pair<Eigen::Vector2d, double>> recent;
+  int thrashes = 0;         // times it went back and forth (thrash_cycles)
   int explore_stalls = 0;   // cycles since it last got min_approach nearer
   // whether a plan moves the robot at all, and whether it leads min_approach nearer to `target`
   // than `distance`
@@ -516,11 +580,30 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       const double d = (position - *explore_to).norm();
       explore_stalls = d < explore_best - limits.min_approach ? 0 : explore_stalls + 1;
       explore_best = std::min(explore_best, d);
-      if (d < limits.explore_beyond || explore_stalls > limits.explore_patience) {
+      if (d < explore_reach || explore_stalls > limits.explore_patience) {
         explore_to.reset();
+        inspecting = false;
       }
     }
-    if (!moves(plan)) {
+    recent.push_back({position, nearest_to_goal});
+    if (int(recent.size()) > limits.thrash_cycles) recent.pop_front();
+    const bool thrashing = !plan.reaches_goal && int(recent.size()) == limits.thrash_cycles &&
+                           nearest_to_goal > recent.front().second - limits.min_approach &&
+                           std::all_of(recent.begin(), recent.end(), [&](const auto& r) {
+                             return (r.first - recent.front().first).norm() < limits.thrash_radius;
+                           });
+    if (thrashing) {
+      recent.clear();
+      ++thrashes;
+    }
+    if (thrashes > 1) {  // the ways it finds take it back and forth
+      failure = "no_path";
+      failure_detail = "no_progress";
+      break;
+    }
+    // inspecting, only a plan to the goal itself takes over (a goal outside the window has
+    // plans toward it that lead to where the way seemed to end)
+    if (!moves(plan) || thrashing || (inspecting && !plan.reaches_goal)) {
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
@@ -537,8 +620,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       bool nearer = false;
       if (!explore_to) {
         toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
-        nearer = leads_nearer(toward, scenario.goal,
-                              explorations > 0 ? std::min(nearest_to_goal, here) : here);
+        nearer =
+            leads_nearer(toward, scenario.goal,
+                         explorations > 0 || thrashes > 0 ? std::min(nearest_to_goal, here) : here);
       }
       // crawling with no way on: beyond a table top as thick as the eyes are high the headroom
       // stays unseen from below, so the robot may get up where the map holds no ceiling, until
@@ -574,6 +658,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         nearer = leads_nearer(toward, *explore_to, (position - *explore_to).norm());
         if (!nearer) {
           explore_to.reset();
+          inspecting = false;
           continue;
         }
       } else if (!nearer && explorations < limits.max_explorations) {
@@ -582,11 +667,28 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         if (moves(edge)) {
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
           explore_to = end + (end - position).normalized() * limits.explore_beyond;
+          explore_reach = limits.explore_beyond;
           explore_best = (*explore_to - position).norm();
           explore_stalls = 0;
           ++explorations;
           toward = std::move(edge);
           nearer = true;
+        }
+      }
+      if (!nearer && !explore_to && explorations < limits.max_explorations) {
+        const std::optional<Eigen::Vector2d> suspect =
+            InspectionPose(fog, maps, believed, scenario, planner_params, posture, limits);
+        if (suspect) {
+          toward = nav::PlanToward(fog, believed, *suspect, planner_params, posture);
+          if (leads_nearer(toward, *suspect, (position - *suspect).norm())) {
+            explore_to = suspect;
+            inspecting = true;
+            explore_reach = limits.inspect_reach;
+            explore_best = (*suspect - position).norm();
+            explore_stalls = 0;
+            ++explorations;
+            nearer = true;
+          }
         }
       }
       if (!nearer) {
