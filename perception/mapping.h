@@ -153,11 +153,12 @@ struct OccupancyParams {
   int min_hits_per_frame = 1;
   // Extension: stereo depth errors grow with the square of the range, so obstacle evidence
   // seen only from afar may be a phantom (at 2.5 m a 0.3 px error moves a wall 0.2 m). Each
-  // column keeps the smallest range of the points that ended in it off its floor;
-  // a cell crossed by a ray at most 1 / overrule_ratio of that range is set free at once
-  // (log-odds of one miss) instead of adding a miss. 0 = the paper's update. Only cells whose
-  // bottom lies below overrule_below (h_tunnel): rays to a ceiling's farther parts graze the
-  // layer of its nearer ones, which would lose a table's underside.
+  // column keeps the smallest range of the points that ended in it off its floor; its cells
+  // crossed in a frame in which a ray crossed the column from at most 1 / overrule_ratio of
+  // that range are set free at once (log-odds of one miss) instead of adding a miss; 0 = the
+  // paper's update. Only cells whose bottom lies below overrule_below (h_tunnel): rays to a
+  // ceiling's farther parts graze the layer of its nearer ones, which would lose a table's
+  // underside.
   double overrule_ratio = 0.0;
   double overrule_below = 0.30;
   // P_occ of eq. (19, 22, 23): a cell is occupied if its probability exceeds this.

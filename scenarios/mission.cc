@@ -12,8 +12,9 @@
 #include <iostream>
 #include <limits>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <optional>
+
+#include <nlohmann/json.hpp>
 
 #include "navigation/planner.h"
 #include "perception/step_edge.h"
