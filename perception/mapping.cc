@@ -208,7 +208,6 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   state->floor.assign(size_t(state->window.NumCells()), kNegInf);
   state->floor_var.assign(size_t(state->window.NumCells()), 0.0f);
   state->obstacle_range.assign(size_t(state->window.NumCells()), kInf);
-  state->free_range.assign(size_t(state->window.NumCells()), kInf);
   state->marks.assign(cells3, 0);
   state->scratch.assign(cells3, 0.0f);
 }

@@ -269,7 +269,8 @@ struct MapState {
   // Variance of each floor height in m^2; 0 where unknown or where heights had no sigma.
   std::vector<float> floor_var;
   // Per 2D cell: the smallest distance (metres) from the camera of the points that ended in
-  // its column off its floor (OccupancyParams::overrule_ratio); +infinity if none.
+  // its column off its floor; +infinity if none. Kept whether or not near views overrule
+  // (OccupancyParams::overrule_ratio): the mission asks which obstacles were seen only afar.
   std::vector<float> obstacle_range;
   // Scratch, reused between updates: per-cell marks of the current frame, scroll buffer, floor
   // heights in layer units.
@@ -278,7 +279,8 @@ struct MapState {
   std::vector<float> floor_local;
   std::vector<float> floor_frame_h;  // per cell, the last plane height fused in this frame
   std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
-  std::vector<float> free_range;           // per 2D cell: the nearest a ray crossed it this frame
+  // per 2D cell: the nearest a ray crossed it this frame (only while overrule_ratio > 0)
+  std::vector<float> free_range;
 
   bool Empty() const { return log_odds.empty(); }
   // Occupancy probability of local cell (ix, iy, iz) (must be inside).

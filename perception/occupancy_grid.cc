@@ -79,10 +79,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     return std::isfinite(f) ? std::abs(z - f) > tol_local + 0.5f : z >= 2.0f;
   };
   const size_t columns = size_t(nx) * size_t(ny);
-  if (overrule) {
-    s.obstacle_range.resize(columns, kInf);
-    s.free_range.assign(columns, kInf);
-  }
+  if (overrule) s.free_range.assign(columns, kInf);
   const float res = float(s.window.resolution);
   const Eigen::Vector3f p_GC = input.p_GC.cast<float>();
 
@@ -91,7 +88,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     const Eigen::Vector3f b = (lp.p_G - o_f) * inv_res;
     const bool end_inside = b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
                             b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
-    if (overrule && end_inside) {
+    if (end_inside) {
       // obstacle evidence: a point off the column's floor (a raised top's face lies below it)
       const size_t c = size_t(FastFloor(b.y()) * nx + FastFloor(b.x()));
       if (off_floor(c, b.z())) {

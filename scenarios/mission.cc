@@ -525,6 +525,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const Eigen::Vector2d end(p.path.back().pose_G.x, p.path.back().pose_G.y);
     return (end - target).norm() < distance - limits.min_approach;
   };
+  // exploring (to a window edge, or to inspect): until within `reach` of `target` or stalled
+  auto start_exploring = [&](const Eigen::Vector2d& target, double reach, bool inspect,
+                             const Eigen::Vector2d& from) {
+    explore_to = target;
+    explore_reach = reach;
+    inspecting = inspect;
+    explore_best = (target - from).norm();
+    explore_stalls = 0;
+    ++explorations;
+  };
   while (true) {
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
@@ -667,11 +677,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
             nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
         if (moves(edge)) {
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
-          explore_to = end + (end - position).normalized() * limits.explore_beyond;
-          explore_reach = limits.explore_beyond;
-          explore_best = (*explore_to - position).norm();
-          explore_stalls = 0;
-          ++explorations;
+          start_exploring(end + (end - position).normalized() * limits.explore_beyond,
+                          limits.explore_beyond, false, position);
           toward = std::move(edge);
           nearer = true;
         }
@@ -682,12 +689,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         if (suspect) {
           toward = nav::PlanToward(fog, believed, *suspect, planner_params, posture);
           if (leads_nearer(toward, *suspect, (position - *suspect).norm())) {
-            explore_to = suspect;
-            inspecting = true;
-            explore_reach = limits.inspect_reach;
-            explore_best = (*suspect - position).norm();
-            explore_stalls = 0;
-            ++explorations;
+            start_exploring(*suspect, limits.inspect_reach, true, position);
             nearer = true;
           }
         }
