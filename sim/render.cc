@@ -79,7 +79,8 @@ struct Renderer::Impl {
   OSMesaContext osmesa = nullptr;
   std::vector<unsigned char> osmesa_buffer;
   mjvScene scene;
-  mjvOption option;
+  mjvOption option;        // the colour pass
+  mjvOption truth_option;  // the surface-id pass
   mjrContext context;
   bool scene_made = false, context_made = false;
   std::vector<unsigned char> rgb_flipped;
@@ -104,6 +105,11 @@ Renderer::Renderer(const mjModel* m) : impl_(std::make_unique<Impl>()) {
   }
   mjv_defaultScene(&impl_->scene);
   mjv_defaultOption(&impl_->option);
+  impl_->option.geomgroup[kSkinGroup] = 1;
+  impl_->option.geomgroup[kSolidGroup] = 0;
+  impl_->truth_option = impl_->option;
+  impl_->truth_option.geomgroup[kSkinGroup] = 0;
+  impl_->truth_option.geomgroup[kSolidGroup] = 1;
   mjr_defaultContext(&impl_->context);
   mjv_makeScene(m, &impl_->scene, 2000);
   impl_->scene_made = true;
@@ -128,29 +134,35 @@ RenderedView Renderer::Render(const mjModel* m, const mjData* d, const PinholeCa
   mjr_setBuffer(mjFB_OFFSCREEN, &impl_->context);
   mjvScene& scn = impl_->scene;
 
-  // scene at the data's state, camera replaced by the pinhole (OpenGL looks along -z, y up)
+  // scene at the data's state
   mjvCamera free_camera;
   mjv_defaultCamera(&free_camera);
   mjv_updateScene(m, const_cast<mjData*>(d), &impl_->option, nullptr, &free_camera, mjCAT_ALL,
                   &scn);
+  // mjv_updateScene sets the scene's cameras; each pass replaces them by the pinhole
+  // (OpenGL looks along -z, y up)
   const Eigen::Vector3d pos = camera.X_WC.translation();
   const Eigen::Vector3d forward = camera.X_WC.rotation().col(2);
   const Eigen::Vector3d up = -camera.X_WC.rotation().col(1);
-  for (int eye = 0; eye < 2; ++eye) {
-    mjvGLCamera& gl = scn.camera[eye];
-    for (int i = 0; i < 3; ++i) {
-      gl.pos[i] = float(pos[i]);
-      gl.forward[i] = float(forward[i]);
-      gl.up[i] = float(up[i]);
+  auto set_cameras = [&](mjvScene* scene) {
+    for (int eye = 0; eye < 2; ++eye) {
+      mjvGLCamera& gl = scene->camera[eye];
+      for (int i = 0; i < 3; ++i) {
+        gl.pos[i] = float(pos[i]);
+        gl.forward[i] = float(forward[i]);
+        gl.up[i] = float(up[i]);
+      }
+      // frustum at the near plane; pixel edges lie half a pixel beyond the centres
+      gl.frustum_near = kNear;
+      gl.frustum_far = kFar;
+      gl.frustum_top = float(kNear * (camera.cy + 0.5) / camera.fy);
+      gl.frustum_bottom = float(-kNear * (h - 0.5 - camera.cy) / camera.fy);
+      gl.frustum_center =
+          float(kNear * ((w - 0.5 - camera.cx) - (camera.cx + 0.5)) / (2 * camera.fx));
     }
-    // frustum at the near plane; pixel edges lie half a pixel beyond the centres
-    gl.frustum_near = kNear;
-    gl.frustum_far = kFar;
-    gl.frustum_top = float(kNear * (camera.cy + 0.5) / camera.fy);
-    gl.frustum_bottom = float(-kNear * (h - 0.5 - camera.cy) / camera.fy);
-    gl.frustum_center = float(kNear * ((w - 0.5 - camera.cx) - (camera.cx + 0.5)) / (2 * camera.fx));
-  }
-  scn.stereo = mjSTEREO_NONE;
+    scene->stereo = mjSTEREO_NONE;
+  };
+  set_cameras(&scn);
   const mjrRect viewport = {0, 0, w, h};
 
   RenderedView view;
@@ -184,6 +196,9 @@ RenderedView Renderer::Render(const mjModel* m, const mjData* d, const PinholeCa
 
   if (request.surfaces) {
     // segmentation pass: each scene geom drawn in the colour segid + 1
+    mjv_updateScene(m, const_cast<mjData*>(d), &impl_->truth_option, nullptr, &free_camera,
+                    mjCAT_ALL, &scn);
+    set_cameras(&scn);
     scn.flags[mjRND_SEGMENT] = 1;
     scn.flags[mjRND_IDCOLOR] = 1;
     mjr_render(viewport, &scn, &impl_->context);

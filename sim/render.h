@@ -33,6 +33,13 @@ constexpr int kSurfacesPerGeom = 8;
 constexpr int kWholeGeomSurface = 6;
 inline int SurfaceGeom(int surface_id) { return surface_id < 0 ? -1 : surface_id / kSurfacesPerGeom; }
 
+// Geom groups with a role in rendering. A solid's surface can have a separate skin: the colour
+// pass draws skins and not solids, the surface-id pass solids and not skins, so depth and
+// surface ids come from the solid while its looks come from the skin (which must coincide).
+// Both groups lie outside MuJoCo's default visible groups 0-2 except the skin's.
+constexpr int kSkinGroup = 2;
+constexpr int kSolidGroup = 4;
+
 // One rendered view. Rows are top to bottom.
 struct RenderedView {
   int width = 0, height = 0;

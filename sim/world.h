@@ -43,8 +43,10 @@ class World {
   const WorldSpec& spec() const { return spec_; }
 
   int floor_geom() const { return floor_geom_; }
-  // geom id of spec().boxes[i]
+  // geom id of spec().boxes[i] (a box in render group kSolidGroup: contacts, depth, surface ids)
   int box_geom(size_t i) const { return box_geoms_[i]; }
+  // geom id of its skin (a textured mesh in kSkinGroup without contacts: what cameras see)
+  int skin_geom(size_t i) const { return skin_geoms_[i]; }
   // true for geoms of the robot (bodies below the robot's root body)
   bool IsRobotGeom(int geom_id) const;
 
@@ -55,6 +57,7 @@ class World {
   int floor_geom_ = -1;
   int robot_root_body_ = -1;
   std::vector<int> box_geoms_;
+  std::vector<int> skin_geoms_;
 };
 
 }  // namespace fognav::sim

@@ -1,9 +1,12 @@
-#include <set>
-
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
 
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
+#include "sim/render.h"
 
 namespace fognav::scenarios {
 namespace {
@@ -15,7 +18,8 @@ TEST(WorldFromScenario, HoldsExactlyTheListedObjects) {
   const mjModel* m = world.model();
   const mjData* d = world.data();
 
-  // every geom is the floor, a part of the robot or one of the scenario's solids, once
+  // every geom is the floor, a part of the robot or one of the scenario's solids or its skin,
+  // once; a skin coincides with its solid, is seen in colour only and never touches anything
   std::set<int> solid_geoms;
   for (size_t i = 0; i < solids.size(); ++i) {
     int geom = world.box_geom(i);
@@ -26,6 +30,28 @@ TEST(WorldFromScenario, HoldsExactlyTheListedObjects) {
     Eigen::Map<const Eigen::Vector3d> half(m->geom_size + 3 * geom);
     EXPECT_TRUE(p.isApprox(solids[i].box.X_FB.translation(), 1e-9)) << solids[i].name;
     EXPECT_TRUE(half.isApprox(solids[i].box.half_size, 1e-9)) << solids[i].name;
+    EXPECT_EQ(m->geom_group[geom], sim::kSolidGroup);
+    int skin = world.skin_geom(i);
+    ASSERT_GE(skin, 0) << solids[i].name;
+    EXPECT_TRUE(solid_geoms.insert(skin).second);
+    EXPECT_EQ(m->geom_type[skin], mjGEOM_MESH);
+    EXPECT_EQ(m->geom_group[skin], sim::kSkinGroup);
+    EXPECT_EQ(m->geom_contype[skin] | m->geom_conaffinity[skin], 0);
+    Eigen::Map<const Eigen::Vector3d> skin_p(d->geom_xpos + 3 * skin);
+    EXPECT_TRUE(skin_p.isApprox(p, 1e-9)) << solids[i].name;
+    // the skin's mesh spans the box: its bounding half extents are the box's in some order
+    const int mesh = m->geom_dataid[skin];
+    Eigen::Vector3d extent = Eigen::Vector3d::Zero();
+    for (int v = 0; v < m->mesh_vertnum[mesh]; ++v) {
+      for (int a = 0; a < 3; ++a) {
+        extent[a] = std::max(extent[a],
+                             double(std::abs(m->mesh_vert[3 * (m->mesh_vertadr[mesh] + v) + a])));
+      }
+    }
+    Eigen::Vector3d sorted_half = half, sorted_extent = extent;
+    std::sort(sorted_half.data(), sorted_half.data() + 3);
+    std::sort(sorted_extent.data(), sorted_extent.data() + 3);
+    EXPECT_TRUE(sorted_extent.isApprox(sorted_half, 1e-5)) << solids[i].name;
   }
   int robot_geoms = 0;
   for (int g = 0; g < m->ngeom; ++g) {

@@ -57,6 +57,44 @@ TEST(Render, DepthOfAWallAtOneMetreWithinTwoMillimetres) {
   EXPECT_GT(checked, 200);
 }
 
+// Stereo needs texture on every face. MuJoCo's own mapping of a 2D texture onto a box
+// projects it along the box's z, so side faces showed streaks: no change down an image column.
+// A box's skin textures each face in its own plane, so a side face seen head-on varies along
+// both image axes, about as much down a column as along a row.
+TEST(Render, ABoxSideFaceIsTexturedAlongBothImageAxes) {
+  WorldSpec spec;
+  spec.with_robot = false;
+  spec.floor_center = {2, 0};
+  spec.boxes.push_back(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0}));
+  World world(spec);
+  Renderer renderer(world.model());
+  auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
+  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  auto on_wall = [&](int u, int v) {
+    return SurfaceGeom(view.surface_id[size_t(v) * view.width + u]) == world.box_geom(0);
+  };
+  auto grey = [&](int u, int v) {
+    const uint8_t* c = &view.rgb[(size_t(v) * view.width + u) * 3];
+    return (int(c[0]) + int(c[1]) + int(c[2])) / 3.0;
+  };
+  double along_row = 0, down_column = 0;
+  int pairs = 0;
+  for (int v = 0; v + 1 < view.height; ++v) {
+    for (int u = 0; u + 1 < view.width; ++u) {
+      if (!on_wall(u, v) || !on_wall(u + 1, v) || !on_wall(u, v + 1)) continue;
+      along_row += std::abs(grey(u + 1, v) - grey(u, v));
+      down_column += std::abs(grey(u, v + 1) - grey(u, v));
+      ++pairs;
+    }
+  }
+  ASSERT_GT(pairs, 5000);
+  along_row /= pairs;
+  down_column /= pairs;
+  EXPECT_GT(along_row, 3.0);
+  EXPECT_GT(down_column, 0.6 * along_row) << "along rows " << along_row;
+  EXPECT_LT(down_column, along_row / 0.6) << "along rows " << along_row;
+}
+
 TEST(Render, SurfaceIdsNameTheFacesOfABox) {
   WorldSpec spec;
   spec.with_robot = false;
