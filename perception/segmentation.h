@@ -53,9 +53,14 @@ struct StereoParams {
   // surfaces and the nearer one wins, so background pixels beside a foreground object take its
   // disparity (foreground fattening; both matchings agree, so the left-right check keeps them).
   // A pixel is on a rim if a disparity at least edge_jump pixels smaller lies within
-  // edge_margin pixels of it along the row; 0 marks nothing.
-  int edge_margin = 3;     // pixels (block_size / 2 + 1)
-  double edge_jump = 1.0;  // pixels; a floor seen from the eyes changes ~0.1 px per row
+  // edge_margin pixels of it along the row, or within 2 * edge_margin rows of it in its column
+  // and also at most (1 - edge_depth_ratio) times its own. Up and down the image, semi-global
+  // matching's vertical paths carry the fattening further (4 rows below a table top's edge),
+  // and surfaces seen at a grazing angle change fast (a table's underside 0.15 m above the
+  // eyes, 0.3 px per row), hence the ratio. 0 marks nothing.
+  int edge_margin = 3;            // pixels (block_size / 2 + 1)
+  double edge_jump = 1.0;         // pixels; a floor seen from the eyes changes ~0.1 px per row
+  double edge_depth_ratio = 0.2;  // the background is at least 25% farther
 };
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
@@ -67,8 +72,9 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
 
 // The rims of nearer surfaces in a disparity image (NaN = none), 1 where a pixel is within
 // p.edge_margin pixels along its row of a disparity at least p.edge_jump smaller (or, to its
-// left, of a failed match: the occluded background). Fattened pixels lie there; so do the true
-// edges of nearer surfaces, which cannot be told apart from them.
+// left, of a failed match: the occluded background), or within 2 * p.edge_margin rows in its
+// column of one smaller by p.edge_jump and by the fraction p.edge_depth_ratio. Fattened pixels
+// lie there; so do the true edges of nearer surfaces, which cannot be told apart from them.
 Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParams& p = {});
 
 // 3D points from a depth image (metres along the optical axis, NaN or <= 0 = none): pixel (u, v)

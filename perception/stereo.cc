@@ -163,24 +163,32 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
 }
 
 Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParams& p) {
-  // per row: the smallest disparity within edge_margin (after a median of three, so that one
-  // stray far match marks nothing). Failed pixels to the left take the disparity left of them:
-  // left of a nearer surface lies background that the right eye cannot see (the left-right
-  // check fails there). Failed pixels to the right count as near.
+  // the smallest disparity within edge_margin along the row and 2 * edge_margin along the
+  // column (after a median of three along the row, so that one stray far match marks nothing).
+  // Failed pixels to the left take the disparity left of them: left of a nearer surface lies
+  // background that the right eye cannot see (the left-right check fails there). Other failed
+  // pixels count as near.
   const int w = disparity_px.width, h = disparity_px.height, m = p.edge_margin;
   Image<uint8_t> rims(w, h, 0);
   if (m <= 0) return rims;
   const float jump = float(p.edge_jump);
   constexpr float kNear = std::numeric_limits<float>::infinity();
-  std::vector<float> median(static_cast<size_t>(w)), from_left(static_cast<size_t>(w));
+  std::vector<float> from_left(static_cast<size_t>(w));
+  Image<float> median(w, h, kNear);  // per row, of three; failed pixels count as near
   for (int v = 0; v < h; ++v) {
     const float* d = &disparity_px.data[size_t(v) * size_t(w)];
     auto near_at = [&](int u) { return std::isfinite(d[u]) ? d[u] : kNear; };
     for (int u = 0; u < w; ++u) {
       const float a = near_at(std::max(u - 1, 0)), b = near_at(u),
                   c = near_at(std::min(u + 1, w - 1));
-      median[size_t(u)] = std::max(std::min(a, b), std::min(std::max(a, b), c));
-      from_left[size_t(u)] = std::isfinite(d[u]) ? median[size_t(u)]
+      median.at(u, v) = std::max(std::min(a, b), std::min(std::max(a, b), c));
+    }
+  }
+  const float keep_ratio = float(1.0 - p.edge_depth_ratio);
+  for (int v = 0; v < h; ++v) {
+    const float* d = &disparity_px.data[size_t(v) * size_t(w)];
+    for (int u = 0; u < w; ++u) {
+      from_left[size_t(u)] = std::isfinite(d[u]) ? median.at(u, v)
                              : u > 0             ? from_left[size_t(u) - 1]
                                                  : kNear;
     }
@@ -188,9 +196,14 @@ Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParam
       if (!std::isfinite(d[u])) continue;
       float far = d[u];
       for (int k = std::max(0, u - m); k <= std::min(w - 1, u + m); ++k) {
-        far = std::min(far, k < u ? from_left[size_t(k)] : median[size_t(k)]);
+        far = std::min(far, k < u ? from_left[size_t(k)] : median.at(k, v));
       }
-      rims.at(u, v) = d[u] - far >= jump;
+      float far_in_column = d[u];
+      for (int k = std::max(0, v - 2 * m); k <= std::min(h - 1, v + 2 * m); ++k) {
+        far_in_column = std::min(far_in_column, median.at(u, k));
+      }
+      rims.at(u, v) = d[u] - far >= jump ||
+                      (d[u] - far_in_column >= jump && far_in_column <= keep_ratio * d[u]);
     }
   }
   return rims;

@@ -190,6 +190,44 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   EXPECT_EQ(unmarked, 0);
 }
 
+// The same up and down the image: a crawling robot's eyes 0.15 m below a table top that ends
+// 0.9 m ahead, a wall at 3 m beyond. Wall pixels just below the top's far edge take the top's
+// disparity and would put phantom obstacles under the table's edge; they lie on its rim. The
+// underside itself, whose disparity changes fast from row to row as it is seen at a grazing
+// angle, is mostly no rim.
+TEST(Stereo, FattenedPixelsBelowAnOverhangLieOnItsRim) {
+  Scene scene;
+  scene.boxes.push_back({Eigen::Vector3d(3.0, -20, 0), Eigen::Vector3d(4.0, 20, 20)});
+  scene.boxes.push_back({Eigen::Vector3d(0.3, -2, 0.35), Eigen::Vector3d(0.9, 2, 0.6)});
+  const auto K = SceneIntrinsics(176, 144);
+  const Eigen::Isometry3d X_WC = SceneCamera(0, 0, 0.2, 0);
+  RgbImage left, right;
+  RenderStereoPair(scene, K, X_WC, &left, &right);
+  const SceneView truth = RenderScene(scene, K, X_WC);
+  Image<float> disparity;
+  StereoPointImage(left, right, K, StereoParams(), &disparity);
+  const Image<uint8_t> rims = DepthEdgeRims(disparity);
+  int fattened = 0, fattened_off_rims = 0, underside = 0, underside_off_rims = 0;
+  for (size_t i = 0; i < disparity.data.size(); ++i) {
+    if (!std::isfinite(disparity.data[i])) continue;
+    const bool on_top = truth.surface.data[i] >= 7;  // surface ids of box 1
+    const double d_true = K.fx * K.baseline / truth.depth.data[i];
+    const bool fat = !on_top && disparity.data[i] > d_true + 1.0;
+    fattened += fat;
+    fattened_off_rims += fat && !rims.data[i];
+    underside += on_top;
+    underside_off_rims += on_top && !rims.data[i];
+  }
+  std::printf(
+      "fattened pixels below the edge: %d, %d of them off the rims; underside pixels with a "
+      "point: %d, %d of them off the rims\n",
+      fattened, fattened_off_rims, underside, underside_off_rims);
+  EXPECT_GT(fattened, 50);
+  EXPECT_LE(fattened_off_rims, fattened / 10);
+  EXPECT_GT(underside, 2000);
+  EXPECT_GT(underside_off_rims, underside * 3 / 4);
+}
+
 TEST(Stereo, UntexturedPairGivesNoPoints) {
   const auto K = SceneIntrinsics(176, 144);
   const RgbImage flat(176, 144, Rgb{128, 128, 128});
