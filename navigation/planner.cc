@@ -224,7 +224,15 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
                       lattice.FloorHeight(lattice.CellOfState(t))});
     s = t;
   }
-  const double terminal = lattice.TerminalCost(s);
+  // with the goal outside the window, the window has moved since: the path ends at the old
+  // edge, maybe inside the new window, and the walk beyond it is priced as at the edge
+  double terminal = lattice.TerminalCost(s);
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
+  if (!w.Contains(gx, gy)) {
+    const Eigen::Vector2d end(r.path.back().pose_G.x, r.path.back().pose_G.y);
+    terminal = (end - goal_G).norm() * p.exit_factor;
+  }
   if (terminal == kInf) return NoPath(NoPathReason::kGoalEnclosed);
   r.status = PlanStatus::kOk;
   r.reaches_goal = lattice.GoalInWindow();
@@ -234,7 +242,15 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
-  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);
+  PlanResult r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);
+  int gx = 0, gy = 0;
+  fog.window.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
+  if (r.status == PlanStatus::kNoPath && r.reason != NoPathReason::kStartBlocked &&
+      !fog.window.Contains(gx, gy)) {
+    // no way out toward the goal yet (a table the window's edge cuts): as near it as may be
+    r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kToward);
+  }
+  return r;
 }
 
 PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,

@@ -187,9 +187,21 @@ struct PlannerParams {
 
   // goal and start
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
-  // a goal outside the map window is approached by planning to the reachable state minimising
-  // path cost + exit_factor * its straight-line distance to the goal
+  // A goal outside the map window is approached by planning to the cells within exit_band of
+  // the window's sides beyond which it lies, each ending the path at exit_factor times its
+  // straight-line distance to the goal; PlanToward ends at any reachable state so, and so does
+  // Plan where the window shows no way to those cells yet. A plan for a
+  // goal outside the window that may end anywhere ends at the wall nearest the goal, and the
+  // robot, whose window moves with it, takes turns between that wall and the way round it. The
+  // factor is high since the window forgets what it leaves: a low one would lead back to the
+  // edge behind which the goal lies beyond a wall the robot has just walked along.
   double exit_factor = 8.0;
+  // about as far as the crawling footprint reaches ahead of its origin (crawl_offset +
+  // crawl_length / 2 + margin): a robot may not crawl beyond the window, so where the window's
+  // edge cuts a table the way out ends before it; and the outermost cells often lie in a
+  // wall's unseen shadow, metres. (With only the outermost cells, 2 of 49 test worlds failed
+  // that pass with this band.)
+  double exit_band = 0.4;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free: a side-step standing, a
   // crawl crawling, a turn in place, a crawl move where the posture changes); metres
@@ -231,7 +243,8 @@ struct PlanResult {
   NoPathReason reason = NoPathReason::kNone;
   std::vector<PathPose> path;
   // true when the path ends within the goal tolerance; false when the goal lies outside the
-  // map window and the path ends at the best reachable state toward it
+  // map window and the path ends near the window's edge toward it (PlannerParams::exit_band),
+  // or where no way leads there, at the best reachable state toward it
   bool reaches_goal = false;
   double cost = 0;    // total cost (metres-equivalent), with the exit term if !reaches_goal
   double length = 0;  // travelled distance of the robot's origin, metres
@@ -249,8 +262,8 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 Posture start_posture = Posture::kUpright);
 
 // Plans as Plan does, but to the reachable state that minimises path cost + p.exit_factor times
-// its straight-line distance to the goal, whether or not the goal itself can be reached (the
-// plan Plan makes for a goal outside the window); reaches_goal is false. A robot that finds no
+// its straight-line distance to the goal, whether or not the goal itself can be reached;
+// reaches_goal is false. A robot that finds no
 // path uses it to get nearer and look again. kNoPath only with kStartBlocked.
 PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
@@ -270,8 +283,9 @@ PlanResult PlanBeyond(const perception::Fog& fog, const perception::Pose2& start
 
 // The rest of an earlier plan on a new map: the robot at start_G (on or near the lattice pose
 // earlier.path[from]) follows the same moves on, priced as Plan prices them on `fog`, with the
-// new map's floor heights, and the exit term where the goal is outside the window (the path is
-// cut where it leaves the window). kNoPath when that pose or one of the moves is no longer
+// new map's floor heights, and where the goal is outside the window the walk beyond the path's
+// end at exit_factor (the path is cut where it leaves the window, and may end inside it now
+// that the window has moved). kNoPath when that pose or one of the moves is no longer
 // allowed, or the path ends outside a goal region in the window. A robot that re-plans as it
 // learns the map keeps to its plan while this costs about what a new plan does, so that two
 // nearly equal ways do not take turns. Uses Plan's per-thread scratch arrays.

@@ -154,6 +154,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
     Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
   }
   if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
+  if (!(p.exit_band >= 0)) Die("Plan: exit_band must not be negative");
   if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
   if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
   if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
@@ -166,7 +167,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   int gx = 0, gy = 0;
   w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
-  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kToward;
+  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
 
   cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
   // lattice geometry
@@ -626,13 +627,21 @@ void Lattice::ComputeTerminalCosts() {
   int gx = 0, gy = 0;
   w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
   if (end_ == End::kBeyond && !w.Contains(gx, gy)) return;  // has_end_ stays false
+  const int band_cells = int(std::floor(p_.exit_band / w.resolution + 1e-9));
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const int i = w.Index(ix, iy);
-      if (end_ != End::kToward) {
-        if (InGoalRegion(i)) terminal_[size_t(i)] = 0.0;
-      } else {
-        terminal_[size_t(i)] = (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor;
+      const double distance = (w.CellCenter(ix, iy) - goal_G_).norm();
+      if (end_ == End::kToward) {
+        terminal_[size_t(i)] = distance * p_.exit_factor;
+      } else if (end_ == End::kExit) {
+        const int b = band_cells;
+        const bool exit = (ix <= b && gx < 0) || (iy <= b && gy < 0) ||
+                          (ix >= w.size_x - 1 - b && gx >= w.size_x) ||
+                          (iy >= w.size_y - 1 - b && gy >= w.size_y);
+        if (exit) terminal_[size_t(i)] = distance * p_.exit_factor;
+      } else if (InGoalRegion(i)) {
+        terminal_[size_t(i)] = 0.0;
       }
     }
   }

@@ -68,8 +68,11 @@ struct SearchMemory {
 
 // Where a search may end (Lattice::TerminalCost).
 enum class End : uint8_t {
-  kGoal,    // in the goal region at no cost; with the goal outside the window, as kToward
+  kGoal,    // in the goal region at no cost; with the goal outside the window, as kExit
   kToward,  // anywhere, at exit_factor times the straight-line distance to the goal
+  // within exit_band of the window's sides beyond which the goal lies (it lies outside the
+  // window), each cell at exit_factor times its straight-line distance to the goal
+  kExit,
   // at the window's edge, where the goal might be reached from beyond the window: each edge
   // cell at exit_factor times its distance to the nearest edge cell of the goal's region (the
   // cells a walk from the goal reaches over floor, stairs, tunnel and unknown cells, never

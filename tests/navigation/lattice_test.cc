@@ -25,8 +25,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // Plain Dijkstra over every state of the lattice from the start seeds: the cheapest
 // path cost plus end cost, +infinity if none.
 double BruteForceCost(const Fog& fog, const Pose2& start, const Eigen::Vector2d& goal,
-                      const PlannerParams& p, Posture posture) {
-  Lattice lattice(fog, goal, p);
+                      const PlannerParams& p, Posture posture, End end = End::kGoal) {
+  Lattice lattice(fog, goal, p, nullptr, end);
   std::vector<double> dist(size_t(lattice.NumStates()), kInf);
   using Entry = std::pair<double, int>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
@@ -93,7 +93,10 @@ TEST(Lattice, AStarCostEqualsBruteForceDijkstra) {
     for (const Eigen::Vector2d& goal : {Eigen::Vector2d(1.30, 0.62), Eigen::Vector2d(1.16, 0.30),
                                        Eigen::Vector2d(3.0, 0.9)}) {
       const PlanResult r = Plan(fog, start, goal, p);
-      const double expected = BruteForceCost(fog, start, goal, p, Posture::kUpright);
+      double expected = BruteForceCost(fog, start, goal, p, Posture::kUpright);
+      if (expected == kInf && goal.x() > 1.44) {  // outside the window: as near it as may be
+        expected = BruteForceCost(fog, start, goal, p, Posture::kUpright, End::kToward);
+      }
       if (expected == kInf) {
         EXPECT_EQ(r.status, PlanStatus::kNoPath) << "seed " << seed;
         ++none;

@@ -921,6 +921,35 @@ TEST(Planner, GoalOutsideTheWindowPlansToTheBestCellTowardIt) {
   ExpectFootprintsClear(fog, r, p);
 }
 
+// A partition across the window between the robot and a goal just beyond the window, with a
+// door at its north end: the plan goes through the door to the window's east edge. A plan that
+// may end anywhere ends at the partition's face nearest the goal instead (the door's way ends
+// 1.9 m from the goal, the face 1 m), and a robot whose window moves with it takes turns between
+// that face and the door.
+TEST(Planner, GoalOutsideTheWindowIsApproachedThroughTheWindowsFarSide) {
+  Fog fog = FlatFog(100, 100, 0.04);  // 4 m x 4 m, the robot at its centre
+  FillBox(&fog, 3.6, 0.0, 3.68, 3.4, CellType::kObstacle, 0.7f);  // door from y = 3.4 to 4.0
+  const PlannerParams p;
+  const Eigen::Vector2d goal(4.6, 1.9);
+  const PlanResult r = Plan(fog, {2.0, 1.9, 0.0}, goal, p);
+  ASSERT_EQ(r.status, PlanStatus::kOk);
+  EXPECT_FALSE(r.reaches_goal);
+  EXPECT_GT(r.path.back().pose_G.x, 3.9);  // on the east edge
+  bool through_door = false;
+  for (const PathPose& q : r.path) through_door |= q.pose_G.x > 3.68 && q.pose_G.y > 3.3;
+  EXPECT_TRUE(through_door);
+  ExpectFootprintsClear(fog, r, p);
+  // walled off from the east edge, the plan leads as near the goal as the window allows: to
+  // the partition's face
+  FillBox(&fog, 3.6, 3.4, 3.68, 4.0, CellType::kObstacle, 0.7f);
+  const PlanResult shut = Plan(fog, {2.0, 1.9, 0.0}, goal, p);
+  ASSERT_EQ(shut.status, PlanStatus::kOk);
+  EXPECT_FALSE(shut.reaches_goal);
+  EXPECT_GT(shut.path.back().pose_G.x, 3.6 - p.depth / 2 - p.margin - 0.09);
+  EXPECT_LT(shut.path.back().pose_G.x, 3.6);
+  EXPECT_NEAR(shut.path.back().pose_G.y, 1.9, 0.05);
+}
+
 TEST(Planner, RunsTheCourseThroughMapNoise) {
   // a map as stereo leaves it: holes of unknown cells and floor heights off by a few millimetres
   internal::Course course = internal::PaperCourse();
