@@ -612,9 +612,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       failure_detail = "no_progress";
       break;
     }
-    // inspecting, only a plan to the goal itself takes over (a goal outside the window has
-    // plans toward it that lead to where the way seemed to end)
-    if (!moves(plan) || thrashing || (inspecting && !plan.reaches_goal)) {
+    // exploring or inspecting, only a plan to the goal itself takes over (a goal outside the
+    // window has plans toward it that lead to where the way seemed to end, and the goal passes
+    // in and out of the window as the robot goes)
+    if (!moves(plan) || thrashing || (explore_to && !plan.reaches_goal)) {
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
