@@ -64,6 +64,12 @@ const char* NoPathReasonName(NoPathReason reason) {
 
 namespace {
 
+bool GoalInWindow(const perception::GridWindow& w, const Eigen::Vector2d& goal_G) {
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
+  return w.Contains(gx, gy);
+}
+
 // A* from the start to the end state of least path cost plus terminal cost (internal::End)
 PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
                   const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture,
@@ -227,9 +233,7 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   // with the goal outside the window, the window has moved since: the path ends at the old
   // edge, maybe inside the new window, and the walk beyond it is priced as at the edge
   double terminal = lattice.TerminalCost(s);
-  int gx = 0, gy = 0;
-  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  if (!w.Contains(gx, gy)) {
+  if (!GoalInWindow(w, goal_G)) {
     const Eigen::Vector2d end(r.path.back().pose_G.x, r.path.back().pose_G.y);
     terminal = (end - goal_G).norm() * p.exit_factor;
   }
@@ -243,10 +247,8 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
   PlanResult r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);
-  int gx = 0, gy = 0;
-  fog.window.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
   if (r.status == PlanStatus::kNoPath && r.reason != NoPathReason::kStartBlocked &&
-      !fog.window.Contains(gx, gy)) {
+      !GoalInWindow(fog.window, goal_G)) {
     // no way out toward the goal yet (a table the window's edge cuts): as near it as may be
     r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kToward);
   }

@@ -189,18 +189,18 @@ struct PlannerParams {
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
   // A goal outside the map window is approached by planning to the cells within exit_band of
   // the window's sides beyond which it lies, each ending the path at exit_factor times its
-  // straight-line distance to the goal; PlanToward ends at any reachable state so, and so does
-  // Plan where the window shows no way to those cells yet. A plan for a
-  // goal outside the window that may end anywhere ends at the wall nearest the goal, and the
-  // robot, whose window moves with it, takes turns between that wall and the way round it. The
-  // factor is high since the window forgets what it leaves: a low one would lead back to the
-  // edge behind which the goal lies beyond a wall the robot has just walked along.
+  // straight-line distance to the goal; PlanToward ends at any reachable state so, and so
+  // does Plan where the window shows no way to those cells yet. A plan for a goal outside the
+  // window that may end anywhere ends at the wall nearest the goal, and the robot, whose
+  // window moves with it, takes turns between that wall and the way round it. The factor is
+  // high since the window forgets what it leaves: at 1.5 the robot went back to the edge
+  // behind which the goal lay beyond a wall it had just walked along (long_wall).
   double exit_factor = 8.0;
-  // about as far as the crawling footprint reaches ahead of its origin (crawl_offset +
+  // About as far as the crawling footprint reaches ahead of its origin (crawl_offset +
   // crawl_length / 2 + margin): a robot may not crawl beyond the window, so where the window's
   // edge cuts a table the way out ends before it; and the outermost cells often lie in a
-  // wall's unseen shadow, metres. (With only the outermost cells, 2 of 49 test worlds failed
-  // that pass with this band.)
+  // wall's unseen shadow. With the outermost cells alone, table_in_divider ended in
+  // no_progress and the doorway world put a forearm on the partition. Metres.
   double exit_band = 0.4;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free: a side-step standing, a
@@ -263,8 +263,8 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
 
 // Plans as Plan does, but to the reachable state that minimises path cost + p.exit_factor times
 // its straight-line distance to the goal, whether or not the goal itself can be reached;
-// reaches_goal is false. A robot that finds no
-// path uses it to get nearer and look again. kNoPath only with kStartBlocked.
+// reaches_goal is false. A robot that finds no path uses it to get nearer and look again.
+// kNoPath only with kStartBlocked.
 PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture = Posture::kUpright);

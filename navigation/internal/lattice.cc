@@ -635,7 +635,7 @@ void Lattice::ComputeTerminalCosts() {
       if (end_ == End::kToward) {
         terminal_[size_t(i)] = distance * p_.exit_factor;
       } else if (end_ == End::kExit) {
-        const int b = band_cells;
+        const int b = band_cells;  // on a side beyond which the goal lies
         const bool exit = (ix <= b && gx < 0) || (iy <= b && gy < 0) ||
                           (ix >= w.size_x - 1 - b && gx >= w.size_x) ||
                           (iy >= w.size_y - 1 - b && gy >= w.size_y);
