@@ -108,6 +108,10 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
     std::fprintf(stderr, "fognav mapping: ComputeFog supports at most 64 layers, got %d\n", nz);
     std::abort();
   }
+  if (params.fog.neighbourhood_radius < 0) {
+    std::fprintf(stderr, "fognav mapping: FogParams::neighbourhood_radius must not be negative\n");
+    std::abort();
+  }
   // only reliable heights enter eq. (24): a height whose sigma exceeds max_height_sigma
   // (a cell seen only by far, noisy planes) is left out, so it marks no step in its neighbours
   const bool check_sigma =
@@ -205,24 +209,34 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
     }
   }
   if (params.fog.require_known_neighbourhood) {
-    // unknown cells (and places beyond the window) in U and in U grown by one cell
+    // unknown cells (and places beyond the window) in U and in U grown by one cell, counted
+    // from a summed-area table of the window padded by `outer` unknown cells on every side
     const std::vector<CellType> first = fog.type;
     const int r = params.fog.neighbourhood_radius, outer = r + 1;
-    auto unknown = [&](int jx, int jy) {
-      return !w.Contains(jx, jy) || first[size_t(w.Index(jx, jy))] == CellType::kUnknown;
+    const int px = w.size_x + 2 * outer, py = w.size_y + 2 * outer;
+    std::vector<int> sum(size_t(px + 1) * size_t(py + 1), 0);  // sum[y][x]: cells below, left
+    for (int y = 0; y < py; ++y) {
+      int row = 0;
+      for (int x = 0; x < px; ++x) {
+        const int jx = x - outer, jy = y - outer;
+        row += !w.Contains(jx, jy) || first[size_t(w.Index(jx, jy))] == CellType::kUnknown;
+        sum[size_t(y + 1) * size_t(px + 1) + size_t(x + 1)] =
+            sum[size_t(y) * size_t(px + 1) + size_t(x + 1)] + row;
+      }
+    }
+    // unknown cells in the square of half-width h around window cell (ix, iy)
+    auto count = [&](int ix, int iy, int h) {
+      const size_t x0 = size_t(ix + outer - h), x1 = size_t(ix + outer + h + 1);
+      const size_t y0 = size_t(iy + outer - h), y1 = size_t(iy + outer + h + 1);
+      const size_t stride = size_t(px + 1);
+      return sum[y1 * stride + x1] - sum[y0 * stride + x1] - sum[y1 * stride + x0] +
+             sum[y0 * stride + x0];
     };
     for (int iy = 0; iy < w.size_y; ++iy) {
       for (int ix = 0; ix < w.size_x; ++ix) {
         const size_t i = size_t(w.Index(ix, iy));
         if (first[i] != CellType::kFloor && first[i] != CellType::kStairs) continue;
-        int in_u = 0, around = 0;
-        for (int jy = iy - outer; jy <= iy + outer; ++jy) {
-          for (int jx = ix - outer; jx <= ix + outer; ++jx) {
-            if (!unknown(jx, jy)) continue;
-            ++around;
-            in_u += std::abs(jx - ix) <= r && std::abs(jy - iy) <= r;
-          }
-        }
+        const int in_u = count(ix, iy, r), around = count(ix, iy, outer);
         if (in_u == 0 || around < params.fog.min_unknown_around) continue;
         fog.type[i] = CellType::kUnknown;
         fog.height[i] = -std::numeric_limits<float>::infinity();
