@@ -1,10 +1,12 @@
 // Floor and Obstacle Grid from the 3D grid and the floor map (paper Section 5.4), and scores.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <limits>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 #include <vector>
 
 #include "perception/internal/map_classify.h"
@@ -211,31 +213,27 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   if (params.fog.require_known_neighbourhood) {
     // unknown cells (and places beyond the window) in U and in U grown by one cell, counted
     // from a summed-area table of the window padded by `outer` unknown cells on every side
-    const std::vector<CellType> first = fog.type;
     const int r = params.fog.neighbourhood_radius, outer = r + 1;
-    const int px = w.size_x + 2 * outer, py = w.size_y + 2 * outer;
-    std::vector<int> sum(size_t(px + 1) * size_t(py + 1), 0);  // sum[y][x]: cells below, left
-    for (int y = 0; y < py; ++y) {
-      int row = 0;
-      for (int x = 0; x < px; ++x) {
-        const int jx = x - outer, jy = y - outer;
-        row += !w.Contains(jx, jy) || first[size_t(w.Index(jx, jy))] == CellType::kUnknown;
-        sum[size_t(y + 1) * size_t(px + 1) + size_t(x + 1)] =
-            sum[size_t(y) * size_t(px + 1) + size_t(x + 1)] + row;
+    cv::Mat1b unknown(w.size_y, w.size_x);
+    for (int iy = 0; iy < w.size_y; ++iy) {
+      for (int ix = 0; ix < w.size_x; ++ix) {
+        unknown(iy, ix) = fog.type[size_t(w.Index(ix, iy))] == CellType::kUnknown;
       }
     }
+    cv::Mat1b padded;
+    cv::copyMakeBorder(unknown, padded, outer, outer, outer, outer, cv::BORDER_CONSTANT, 1);
+    cv::Mat1i sum;  // sum(y, x): the unknown padded cells in rows before y, columns before x
+    cv::integral(padded, sum, CV_32S);
     // unknown cells in the square of half-width h around window cell (ix, iy)
     auto count = [&](int ix, int iy, int h) {
-      const size_t x0 = size_t(ix + outer - h), x1 = size_t(ix + outer + h + 1);
-      const size_t y0 = size_t(iy + outer - h), y1 = size_t(iy + outer + h + 1);
-      const size_t stride = size_t(px + 1);
-      return sum[y1 * stride + x1] - sum[y0 * stride + x1] - sum[y1 * stride + x0] +
-             sum[y0 * stride + x0];
+      const int x0 = ix + outer - h, x1 = ix + outer + h + 1;
+      const int y0 = iy + outer - h, y1 = iy + outer + h + 1;
+      return sum(y1, x1) - sum(y0, x1) - sum(y1, x0) + sum(y0, x0);
     };
     for (int iy = 0; iy < w.size_y; ++iy) {
       for (int ix = 0; ix < w.size_x; ++ix) {
         const size_t i = size_t(w.Index(ix, iy));
-        if (first[i] != CellType::kFloor && first[i] != CellType::kStairs) continue;
+        if (fog.type[i] != CellType::kFloor && fog.type[i] != CellType::kStairs) continue;
         const int in_u = count(ix, iy, r), around = count(ix, iy, outer);
         if (in_u == 0 || around < params.fog.min_unknown_around) continue;
         fog.type[i] = CellType::kUnknown;

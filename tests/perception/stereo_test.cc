@@ -120,6 +120,35 @@ TEST(Stereo, LeftRightCheckRejectsMatchesBetweenUnrelatedImages) {
   EXPECT_LT(with_check, 0.5 * without);
 }
 
+// Stereo of `scene` seen from X_WC against its rims: the pixels with a point off the nearer
+// surface (surface ids from 7, the boxes after the first) whose disparity exceeds the truth by
+// more than 1 px (fattened), and the pixels with a point on it, each with how many of them lie
+// off the rims. The disparity image goes to *disparity.
+struct RimCounts {
+  int fattened = 0, fattened_off_rims = 0, nearer = 0, nearer_off_rims = 0;
+};
+RimCounts CountAgainstRims(const Scene& scene, const Eigen::Isometry3d& X_WC,
+                           Image<float>* disparity) {
+  const auto K = SceneIntrinsics(176, 144);
+  RgbImage left, right;
+  RenderStereoPair(scene, K, X_WC, &left, &right);
+  const SceneView truth = RenderScene(scene, K, X_WC);
+  StereoPointImage(left, right, K, StereoParams(), disparity);
+  const Image<uint8_t> rims = DepthEdgeRims(*disparity);
+  RimCounts c;
+  for (size_t i = 0; i < disparity->data.size(); ++i) {
+    if (!std::isfinite(disparity->data[i])) continue;
+    const bool on_nearer = truth.surface.data[i] >= 7;
+    const double d_true = K.fx * K.baseline / truth.depth.data[i];
+    const bool fat = !on_nearer && disparity->data[i] > d_true + 1.0;
+    c.fattened += fat;
+    c.fattened_off_rims += fat && !rims.data[i];
+    c.nearer += on_nearer;
+    c.nearer_off_rims += on_nearer && !rims.data[i];
+  }
+  return c;
+}
+
 // Two posts 0.2 m apart at 1.2 m in front of a wall at 3 m. Near the posts' sides the matching
 // block covers post and wall, and the nearer post wins: wall pixels beside a post take its
 // disparity (foreground fattening), which would put phantom obstacles into the gap. They lie on
@@ -132,23 +161,10 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   scene.boxes.push_back({Eigen::Vector3d(1.2, 0.1, -20), Eigen::Vector3d(1.3, 0.4, 20)});
   const auto K = SceneIntrinsics(176, 144);
   const Eigen::Isometry3d X_WC = SceneCamera(0, 0, 0, 0);
-  RgbImage left, right;
-  RenderStereoPair(scene, K, X_WC, &left, &right);
-  const SceneView truth = RenderScene(scene, K, X_WC);
   Image<float> disparity;
-  StereoPointImage(left, right, K, StereoParams(), &disparity);
-  const Image<uint8_t> rims = DepthEdgeRims(disparity);
-  int fattened = 0, fattened_off_rims = 0, post = 0, post_off_rims = 0;
-  for (size_t i = 0; i < disparity.data.size(); ++i) {
-    if (!std::isfinite(disparity.data[i])) continue;
-    const bool on_post = truth.surface.data[i] >= 7;  // surface ids of boxes 1 and 2
-    const double d_true = K.fx * K.baseline / truth.depth.data[i];
-    const bool fat = !on_post && disparity.data[i] > d_true + 1.0;
-    fattened += fat;
-    fattened_off_rims += fat && !rims.data[i];
-    post += on_post;
-    post_off_rims += on_post && !rims.data[i];
-  }
+  const RimCounts c = CountAgainstRims(scene, X_WC, &disparity);  // the posts are the nearer
+  const int fattened = c.fattened, fattened_off_rims = c.fattened_off_rims, post = c.nearer,
+            post_off_rims = c.nearer_off_rims;
   std::printf(
       "fattened wall pixels: %d, %d of them off the rims; post pixels with a point: %d, "
       "%d of them off the rims\n",
@@ -199,25 +215,10 @@ TEST(Stereo, FattenedPixelsBelowAnOverhangLieOnItsRim) {
   Scene scene;
   scene.boxes.push_back({Eigen::Vector3d(3.0, -20, 0), Eigen::Vector3d(4.0, 20, 20)});
   scene.boxes.push_back({Eigen::Vector3d(0.3, -2, 0.35), Eigen::Vector3d(0.9, 2, 0.6)});
-  const auto K = SceneIntrinsics(176, 144);
-  const Eigen::Isometry3d X_WC = SceneCamera(0, 0, 0.2, 0);
-  RgbImage left, right;
-  RenderStereoPair(scene, K, X_WC, &left, &right);
-  const SceneView truth = RenderScene(scene, K, X_WC);
   Image<float> disparity;
-  StereoPointImage(left, right, K, StereoParams(), &disparity);
-  const Image<uint8_t> rims = DepthEdgeRims(disparity);
-  int fattened = 0, fattened_off_rims = 0, underside = 0, underside_off_rims = 0;
-  for (size_t i = 0; i < disparity.data.size(); ++i) {
-    if (!std::isfinite(disparity.data[i])) continue;
-    const bool on_top = truth.surface.data[i] >= 7;  // surface ids of box 1
-    const double d_true = K.fx * K.baseline / truth.depth.data[i];
-    const bool fat = !on_top && disparity.data[i] > d_true + 1.0;
-    fattened += fat;
-    fattened_off_rims += fat && !rims.data[i];
-    underside += on_top;
-    underside_off_rims += on_top && !rims.data[i];
-  }
+  const RimCounts c = CountAgainstRims(scene, SceneCamera(0, 0, 0.2, 0), &disparity);
+  const int fattened = c.fattened, fattened_off_rims = c.fattened_off_rims, underside = c.nearer,
+            underside_off_rims = c.nearer_off_rims;  // the top's
   std::printf(
       "fattened pixels below the edge: %d, %d of them off the rims; underside pixels with a "
       "point: %d, %d of them off the rims\n",

@@ -32,16 +32,23 @@ WorldBox Box(const std::string& name, const Eigen::Vector3d& center, const Eigen
   return box;
 }
 
-TEST(Render, DepthOfAWallAtOneMetreWithinTwoMillimetres) {
+// A wall whose face lies at x = 1.0 exactly, seen head-on from the eyes' height at 176x144.
+WorldSpec WallAtOneMetre() {
   WorldSpec spec;
   spec.with_robot = false;
   spec.floor_center = {2, 0};
-  // wall face at x = 1.0 exactly, seen head-on
   spec.boxes.push_back(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0}));
-  World world(spec);
+  return spec;
+}
+RenderedView ViewAlongX(const World& world) {
   Renderer renderer(world.model());
   auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
-  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  return renderer.Render(world.model(), world.data(), camera);
+}
+
+TEST(Render, DepthOfAWallAtOneMetreWithinTwoMillimetres) {
+  const World world(WallAtOneMetre());
+  const RenderedView view = ViewAlongX(world);
   int checked = 0;
   for (int v = 0; v < view.height; v += 7) {
     for (int u = 0; u < view.width; u += 7) {
@@ -62,14 +69,8 @@ TEST(Render, DepthOfAWallAtOneMetreWithinTwoMillimetres) {
 // A box's skin textures each face in its own plane, so a side face seen head-on varies along
 // both image axes, about as much down a column as along a row.
 TEST(Render, ABoxSideFaceIsTexturedAlongBothImageAxes) {
-  WorldSpec spec;
-  spec.with_robot = false;
-  spec.floor_center = {2, 0};
-  spec.boxes.push_back(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0}));
-  World world(spec);
-  Renderer renderer(world.model());
-  auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
-  RenderedView view = renderer.Render(world.model(), world.data(), camera);
+  const World world(WallAtOneMetre());
+  const RenderedView view = ViewAlongX(world);
   auto on_wall = [&](int u, int v) {
     return SurfaceGeom(view.surface_id[size_t(v) * view.width + u]) == world.box_geom(0);
   };
