@@ -164,6 +164,7 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
   s.u.resize(size_t(w));
   s.a.resize(size_t(w));
   s.c.resize(size_t(w));
+  s.q.resize(size_t(w));
   s.prefix.resize(size_t(w) + 1);
   s.cut.resize(size_t(w) + 1);
 
@@ -171,18 +172,21 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
   const bool cut_jumps = p.jump_ratio > 0;
   for (int v = 0; v < h; ++v) {
     out->row_begin[size_t(v)] = int(out->lines.size());
-    // read the row's points once: valid mask, compact list, running sums, and the cuts into
-    // runs at gaps and depth jumps (s.cut[j] is the first index of run j)
+    // read the row's points once: valid mask, compact list and the cuts into runs at gaps and
+    // depth jumps (s.cut[j] is the first index of run j)
     const Eigen::Vector3f* row = &points.points[size_t(v) * w];
     uint8_t* valid = &out->valid[size_t(v) * w];
     int n = 0, cuts = 0;
     ScanPlane sp;  // 2D coordinates: a = x, c = (ty y + z) / k
     double inv_k = 1;
-    // the running sums and the previous point live in registers, not in the scratch arrays
-    double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
     int prev_u = 0;
     double prev_c = 0;  // |c| of the previous point
-    s.prefix[0] = {};
+    // raw pointers in locals: the byte stores to `valid` could alias the vectors' own pointers
+    int* su = s.u.data();
+    int* scut = s.cut.data();
+    Eigen::Vector3f* sq = s.q.data();
+    double *sa = s.a.data(), *sc = s.c.data();
+    const double jump_ratio = p.jump_ratio;
     for (int u = 0; u < w; ++u) {
       const Eigen::Vector3f& q = row[u];
       const double x = q.x(), y = q.y(), z = q.z();
@@ -197,23 +201,35 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
       }
       const double c = (sp.ty * y + z) * inv_k, abs_c = std::abs(c);
       if (n == 0 || u - prev_u > max_step ||
-          (cut_jumps && std::abs(abs_c - prev_c) > p.jump_ratio * std::min(abs_c, prev_c)))
-        s.cut[size_t(cuts++)] = n;
+          (cut_jumps && std::abs(abs_c - prev_c) > jump_ratio * std::min(abs_c, prev_c)))
+        scut[cuts++] = n;
       prev_u = u;
       prev_c = abs_c;
-      s.u[size_t(n)] = u;
-      s.a[size_t(n)] = x;
-      s.c[size_t(n)] = c;
-      sx += x;
-      sy += y;
-      sz += z;
-      sxx += x * x;
-      sxy += x * y;
-      sxz += x * z;
-      syy += y * y;
-      syz += y * z;
-      szz += z * z;
-      s.prefix[size_t(++n)] = {sx, sy, sz, sxx, sxy, sxz, syy, syz, szz};
+      su[n] = u;
+      sq[n] = q;
+      sa[n] = x;
+      sc[n] = c;
+      ++n;
+    }
+    // the running sums, in a second loop without branches whose sums stay in registers
+    {
+      double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
+      std::array<double, 9>* prefix = s.prefix.data();
+      prefix[0] = {};
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3f& q = sq[i];
+        const double x = q.x(), y = q.y(), z = q.z();
+        sx += x;
+        sy += y;
+        sz += z;
+        sxx += x * x;
+        sxy += x * y;
+        sxz += x * z;
+        syy += y * y;
+        syz += y * z;
+        szz += z * z;
+        prefix[i + 1] = {sx, sy, sz, sxx, sxy, sxz, syy, syz, szz};
+      }
     }
     if (n < p.n_min) continue;
     s.cut[size_t(cuts)] = n;
