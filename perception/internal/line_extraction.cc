@@ -211,7 +211,7 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
       sc[n] = c;
       ++n;
     }
-    // the running sums, in a second loop without branches whose sums stay in registers
+    // the running sums, in a second loop without branches, so that the nine sums stay in registers
     {
       double sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, sxz = 0, syy = 0, syz = 0, szz = 0;
       std::array<double, 9>* prefix = s.prefix.data();
