@@ -233,7 +233,7 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   // with the goal outside the window, the window has moved since: the path ends at the old
   // edge, maybe inside the new window, and the walk beyond it is priced as at the edge
   double terminal = lattice.TerminalCost(s);
-  if (!GoalInWindow(w, goal_G)) {
+  if (!lattice.GoalInWindow()) {
     const Eigen::Vector2d end(r.path.back().pose_G.x, r.path.back().pose_G.y);
     terminal = (end - goal_G).norm() * p.exit_factor;
   }

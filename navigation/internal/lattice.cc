@@ -631,15 +631,15 @@ void Lattice::ComputeTerminalCosts() {
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const int i = w.Index(ix, iy);
-      const double distance = (w.CellCenter(ix, iy) - goal_G_).norm();
+      const auto toward = [&] { return (w.CellCenter(ix, iy) - goal_G_).norm() * p_.exit_factor; };
       if (end_ == End::kToward) {
-        terminal_[size_t(i)] = distance * p_.exit_factor;
+        terminal_[size_t(i)] = toward();
       } else if (end_ == End::kExit) {
         const int b = band_cells;  // on a side beyond which the goal lies
         const bool exit = (ix <= b && gx < 0) || (iy <= b && gy < 0) ||
                           (ix >= w.size_x - 1 - b && gx >= w.size_x) ||
                           (iy >= w.size_y - 1 - b && gy >= w.size_y);
-        if (exit) terminal_[size_t(i)] = distance * p_.exit_factor;
+        if (exit) terminal_[size_t(i)] = toward();
       } else if (InGoalRegion(i)) {
         terminal_[size_t(i)] = 0.0;
       }

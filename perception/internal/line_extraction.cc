@@ -61,12 +61,14 @@ Line2 FitLine(const Moments& m, const ScanPlane& sp) {
 
 // Index in (i0, i1) of the point farthest from the chord between points i0 and i1.
 int FarthestFromChord(const ScanlineScratch& s, int i0, int i1, double* dist) {
-  const double da = s.a[size_t(i1)] - s.a[size_t(i0)], dc = s.c[size_t(i1)] - s.c[size_t(i0)];
+  const double da = double(s.q[size_t(i1)].x()) - s.q[size_t(i0)].x(),
+               dc = s.c[size_t(i1)] - s.c[size_t(i0)];
   const double len = std::sqrt(da * da + dc * dc);
   int best = i0 + 1;
   double best_d = -1;
   for (int i = i0 + 1; i < i1; ++i) {
-    const double ra = s.a[size_t(i)] - s.a[size_t(i0)], rc = s.c[size_t(i)] - s.c[size_t(i0)];
+    const double ra = double(s.q[size_t(i)].x()) - s.q[size_t(i0)].x(),
+                 rc = s.c[size_t(i)] - s.c[size_t(i0)];
     const double d = len > 0 ? std::abs(ra * dc - rc * da) / len : std::sqrt(ra * ra + rc * rc);
     if (d > best_d) {
       best_d = d;
@@ -91,10 +93,10 @@ class RowSplitter {
     const Line2 line = FitLine(m, sp_);
     // max-count-consecutive-same-side, stopping as soon as a run reaches C_max
     const double off = line.na * line.ma + line.nc * line.mc;
-    const double* a = &s_.a[size_t(i0)];
+    const Eigen::Vector3f* q = &s_.q[size_t(i0)];
     const double* c = &s_.c[size_t(i0)];
     const int longest = LongestSameSideRun(
-        n, [&](int i) { return line.na * a[i] + line.nc * c[i] - off; }, p_.side_tolerance,
+        n, [&](int i) { return line.na * q[i].x() + line.nc * c[i] - off; }, p_.side_tolerance,
         p_.c_max);
     const bool split = longest >= p_.c_max;
     if (!split || n < 3) {
@@ -162,7 +164,6 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
   out->valid.assign(size_t(w) * h, 0);
   ScanlineScratch& s = *scratch;
   s.u.resize(size_t(w));
-  s.a.resize(size_t(w));
   s.c.resize(size_t(w));
   s.q.resize(size_t(w));
   s.prefix.resize(size_t(w) + 1);
@@ -185,7 +186,7 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
     int* su = s.u.data();
     int* scut = s.cut.data();
     Eigen::Vector3f* sq = s.q.data();
-    double *sa = s.a.data(), *sc = s.c.data();
+    double* sc = s.c.data();
     const double jump_ratio = p.jump_ratio;
     for (int u = 0; u < w; ++u) {
       const Eigen::Vector3f& q = row[u];
@@ -207,7 +208,6 @@ void ExtractLines(const PointImage& points, const SegmentParams& p, LineSet* out
       prev_c = abs_c;
       su[n] = u;
       sq[n] = q;
-      sa[n] = x;
       sc[n] = c;
       ++n;
     }

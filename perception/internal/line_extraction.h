@@ -42,8 +42,8 @@ struct LineSet {
 // Reusable buffers of one scan line, so that extraction allocates nothing per pixel.
 struct ScanlineScratch {
   std::vector<int> u;
-  std::vector<Eigen::Vector3f> q;              // the valid points, compact
-  std::vector<double> a, c;                    // 2D coordinates in the scan line's plane
+  std::vector<Eigen::Vector3f> q;              // the valid points, compact (a = x)
+  std::vector<double> c;                       // 2D coordinate c in the scan line's plane
   std::vector<std::array<double, 9>> prefix;   // running sums x y z xx xy xz yy yz zz
   std::vector<int> cut;                        // first index of each run, then the count
 };
