@@ -17,6 +17,7 @@ namespace {
 using internal::FitPlane;
 using internal::LineSegment;
 using internal::LineSet;
+using internal::MeanSquaredResidual;
 using internal::Moments;
 using internal::PlaneFit;
 using internal::Rms;
@@ -103,6 +104,19 @@ class Grouper {
     if (offset <= p_.offset_min) return true;
     const double independent = std::max(1.0, m.n / std::max(p_.correlation_px, 1.0));
     return offset < p_.offset_sigmas * sigma / std::sqrt(independent);
+  }
+
+  // a region fits a joint plane f if f departs from the region's own plane by little: the RMS
+  // of f - own over the region's points (sqrt(rms_f^2 - rms_own^2)) within the offset test's
+  // bound. The mean offset alone misses two parallel treads a few centimetres apart, to which a
+  // joint plane tilted between them fits with no mean offset at all.
+  bool JointFits(const Region& r, const PlaneFit& f) const {
+    if (p_.offset_sigmas <= 0 || r.m.n <= 0) return true;
+    const double own = r.fit.ok ? MeanSquaredResidual(r.m, r.fit.n, r.fit.dist) : 0.0;
+    const double departure = std::sqrt(std::max(0.0, MeanSquaredResidual(r.m, f.n, f.dist) - own));
+    if (departure <= p_.offset_min) return true;
+    const double independent = std::max(1.0, r.m.n / std::max(p_.correlation_px, 1.0));
+    return departure < p_.offset_sigmas * r.sigma / std::sqrt(independent);
   }
 
   // the spread across plane normal n that the line's noise along the viewing rays gives: the
@@ -461,8 +475,8 @@ class Grouper {
         m.Add(rb.m);
         const PlaneFit f = FitPlane(m);
         if (!f.ok || Rms(ra.m, f.n, f.dist) >= p_.r_seed * ra.sigma ||
-            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma || !OffsetFits(ra.m, ra.sigma, f) ||
-            !OffsetFits(rb.m, rb.sigma, f))
+            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma || !JointFits(ra, f) ||
+            !JointFits(rb, f))
           continue;
         ra.m = m;
         ra.fit = f;

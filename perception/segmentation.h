@@ -166,7 +166,9 @@ struct SegmentParams {
   // correlation_px-th point counts as independent). This separates parallel surfaces a few
   // centimetres apart (treads) whose lines each scatter more than their offset; offsets up to
   // offset_min (metres) always pass, as stereo planes bend by a few millimetres. Merging
-  // regions applies the same test to each region's mean offset from the joint plane. 0 = off.
+  // regions applies the same bound to how far the joint plane departs from each region's own
+  // plane over its points (RMS), which also catches a joint plane tilted between two parallel
+  // treads (no mean offset from either). 0 = off.
   double offset_sigmas = 0;
   double correlation_px = 5;
   double offset_min = 0.01;
