@@ -96,27 +96,29 @@ class Grouper {
     return OffsetFits(l.m, sigma, f);
   }
 
-  // the mean offset test: the mean distance of a point set to plane f against its standard
-  // error, for points that spread by sigma across the plane
-  bool OffsetFits(const Moments& m, double sigma, const PlaneFit& f) const {
-    if (p_.offset_sigmas <= 0 || m.n <= 0) return true;
-    const double offset = std::abs(m.b.dot(f.n) / m.n - f.dist);
+  // the offset bound: a distance `offset` from a plane, averaged over n points that spread by
+  // sigma across it, is small if below offset_min or offset_sigmas standard errors of the mean
+  bool SmallOffset(double offset, double n, double sigma) const {
     if (offset <= p_.offset_min) return true;
-    const double independent = std::max(1.0, m.n / std::max(p_.correlation_px, 1.0));
+    const double independent = std::max(1.0, n / std::max(p_.correlation_px, 1.0));
     return offset < p_.offset_sigmas * sigma / std::sqrt(independent);
   }
 
+  // the mean offset test: the mean distance of a point set to plane f within the offset bound
+  bool OffsetFits(const Moments& m, double sigma, const PlaneFit& f) const {
+    if (p_.offset_sigmas <= 0 || m.n <= 0) return true;
+    return SmallOffset(std::abs(m.b.dot(f.n) / m.n - f.dist), m.n, sigma);
+  }
+
   // a region fits a joint plane f if f departs from the region's own plane by little: the RMS
-  // of f - own over the region's points (sqrt(rms_f^2 - rms_own^2)) within the offset test's
-  // bound. The mean offset alone misses two parallel treads a few centimetres apart, to which a
-  // joint plane tilted between them fits with no mean offset at all.
+  // of f - own over the region's points (sqrt(rms_f^2 - rms_own^2)) within the offset bound.
+  // The mean offset alone misses two parallel treads a few centimetres apart, to which a joint
+  // plane tilted between them fits with no mean offset at all.
   bool JointFits(const Region& r, const PlaneFit& f) const {
     if (p_.offset_sigmas <= 0 || r.m.n <= 0) return true;
     const double own = r.fit.ok ? MeanSquaredResidual(r.m, r.fit.n, r.fit.dist) : 0.0;
     const double departure = std::sqrt(std::max(0.0, MeanSquaredResidual(r.m, f.n, f.dist) - own));
-    if (departure <= p_.offset_min) return true;
-    const double independent = std::max(1.0, r.m.n / std::max(p_.correlation_px, 1.0));
-    return departure < p_.offset_sigmas * r.sigma / std::sqrt(independent);
+    return SmallOffset(departure, r.m.n, r.sigma);
   }
 
   // the spread across plane normal n that the line's noise along the viewing rays gives: the
