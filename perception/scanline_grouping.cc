@@ -110,15 +110,17 @@ class Grouper {
     return SmallOffset(std::abs(m.b.dot(f.n) / m.n - f.dist), m.n, sigma);
   }
 
-  // a region fits a joint plane f if f departs from the region's own plane by little: the RMS
-  // of f - own over the region's points (sqrt(rms_f^2 - rms_own^2)) within the offset bound.
-  // The mean offset alone misses two parallel treads a few centimetres apart, to which a joint
-  // plane tilted between them fits with no mean offset at all.
+  // a region fits a joint plane f if its RMS about f is within r_seed of its own sigma (the
+  // seed test of eq. 13 with regions in place of lines) and f departs from the region's own
+  // plane by little: the RMS of f - own over the region's points (sqrt(rms_f^2 - rms_own^2))
+  // within the offset bound. The mean offset alone misses two parallel treads a few
+  // centimetres apart, to which a joint plane tilted between them fits with no mean offset.
   bool JointFits(const Region& r, const PlaneFit& f) const {
+    const double joint = MeanSquaredResidual(r.m, f.n, f.dist);
+    if (std::sqrt(joint) >= p_.r_seed * r.sigma) return false;
     if (p_.offset_sigmas <= 0 || r.m.n <= 0) return true;
     const double own = r.fit.ok ? MeanSquaredResidual(r.m, r.fit.n, r.fit.dist) : 0.0;
-    const double departure = std::sqrt(std::max(0.0, MeanSquaredResidual(r.m, f.n, f.dist) - own));
-    return SmallOffset(departure, r.m.n, r.sigma);
+    return SmallOffset(std::sqrt(std::max(0.0, joint - own)), r.m.n, r.sigma);
   }
 
   // the spread across plane normal n that the line's noise along the viewing rays gives: the
@@ -476,10 +478,7 @@ class Grouper {
         Moments m = ra.m;
         m.Add(rb.m);
         const PlaneFit f = FitPlane(m);
-        if (!f.ok || Rms(ra.m, f.n, f.dist) >= p_.r_seed * ra.sigma ||
-            Rms(rb.m, f.n, f.dist) >= p_.r_seed * rb.sigma || !JointFits(ra, f) ||
-            !JointFits(rb, f))
-          continue;
+        if (!f.ok || !JointFits(ra, f) || !JointFits(rb, f)) continue;
         ra.m = m;
         ra.fit = f;
         ra.sigma = std::max(Rms(m, f.n, f.dist), p_.sigma_min);
