@@ -161,6 +161,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
     Die("Plan: level_margin must be in [0, margin]");
   }
   if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
+  if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
@@ -579,6 +580,30 @@ void Lattice::ComputeLevelRanges() {
       level_hi_[size_t(w.Index(ix, iy))] = hi;
     }
   }
+  // per unknown cell: the highest border cell beside it (the edge of a solid's top seen from
+  // one side; not obstacle cells, which stray stereo matches make too); and the squared
+  // distance to the nearest unknown cell with one
+  hidden_top_.assign(n, -kFloatInf);
+  std::vector<uint8_t> hidden(n, 0);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      if (fog_.type[i] != CellType::kUnknown) continue;
+      float top = -kFloatInf;
+      for (int y = std::max(0, iy - 1); y <= std::min(w.size_y - 1, iy + 1); ++y) {
+        for (int x = std::max(0, ix - 1); x <= std::min(w.size_x - 1, ix + 1); ++x) {
+          const size_t j = size_t(w.Index(x, y));
+          const CellType t = fog_.type[j];
+          if (t == CellType::kBorder && std::isfinite(fog_.height[j])) {
+            top = std::max(top, fog_.height[j]);
+          }
+        }
+      }
+      hidden_top_[i] = top;
+      hidden[i] = top != -kFloatInf;
+    }
+  }
+  SquaredDistanceTransform(hidden, w.size_x, w.size_y, &hidden_d2_);
 }
 
 double Lattice::HeightStep(int from_cell, int to_cell) const {
@@ -1113,7 +1138,8 @@ bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets) const {
   const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= body * body;
   const bool high_near = std::isfinite(centre_h) &&
                          double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
-  if (!obstacle_near && !high_near) return false;
+  const bool hidden_near = hidden_d2_[size_t(cell)] <= body * body;
+  if (!obstacle_near && !high_near && !hidden_near) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   for (const CellStep& o : offsets) {
     const int nx = ix + o.dx, ny = iy + o.dy;
@@ -1121,7 +1147,15 @@ bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets) const {
     const size_t i = size_t(w.Index(nx, ny));
     const CellType t = fog_.type[i];
     if (t == CellType::kObstacle || t == CellType::kTunnel) return true;
-    if (high_near && t != CellType::kUnknown && std::isfinite(fog_.height[i]) &&
+    if (t == CellType::kUnknown) {
+      // beside the edge of a top the eyes saw from one side only (a wall's far face, a block's
+      // hidden corner) the solid may go on, at the hands' height or higher
+      if (std::isfinite(centre_h) && double(hidden_top_[i]) - double(centre_h) > p_.hand_low) {
+        return true;
+      }
+      continue;
+    }
+    if (high_near && std::isfinite(fog_.height[i]) &&
         double(fog_.height[i]) - double(centre_h) > p_.h_stairs) {
       return true;
     }

@@ -459,6 +459,48 @@ TEST(Lattice, KneesOverAnObstacleCostMore) {
   EXPECT_LT(near_cost - open_cost, p.body_touch_cost + 0.1);
 }
 
+// The eyes see a wall from one side only: the unknown cells beside it may hold the rest of it
+// (a wall's far face, a block's hidden corner, where hands hit in 60-degree-view missions). A
+// walk that ends with a hand over such a cell costs body_touch_cost more than the same walk
+// beside the same wall with known floor beyond it; beside unknown cells away from any solid, or
+// beside a top lower than the hands, it costs nothing more.
+TEST(Lattice, HandsKeepOffTheUnseenSideOfASolid) {
+  const PlannerParams p;
+  Fog seen = FlatFog(40, 30, 0.04);
+  FillBox(&seen, 0.80, 0.20, 0.84, 0.60, CellType::kBorder, 0.30f);  // x cell 20, y cells 5-14
+  Fog hidden = seen;
+  FillBox(&hidden, 0.84, 0.20, 0.88, 0.60, CellType::kUnknown, -INFINITY);  // x cell 21
+  Fog open = FlatFog(40, 30, 0.04);
+  Fog open_unknown = open;
+  FillBox(&open_unknown, 0.84, 0.20, 0.88, 0.60, CellType::kUnknown, -INFINITY);
+  // facing +y at x cell 25 (centre 1.02 m): cell 21's centre lies 0.16 m across, within the
+  // hands' reach (0.167 m with the margin) but beyond the footprint (0.145 m); cell 20's beyond
+  const int k = NearestHeading(M_PI / 2);
+  ASSERT_NEAR(HeadingYaw(k), M_PI / 2, 1e-9);
+  auto walk_cost = [&](const Fog& fog) {
+    Lattice lattice(fog, {1.0, 1.1}, p);
+    Successor succ[kMaxSuccessors];
+    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(25, 8, k, Posture::kUpright),
+                                        lattice.StateIndex(25, 9, k, Posture::kUpright), succ);
+    return move != nullptr ? move->cost : -1.0;
+  };
+  const double c_seen = walk_cost(seen), c_hidden = walk_cost(hidden);
+  const double c_open = walk_cost(open), c_open_unknown = walk_cost(open_unknown);
+  ASSERT_GT(c_seen, 0);
+  ASSERT_GT(c_open, 0);
+  EXPECT_NEAR(c_hidden - c_seen, p.body_touch_cost, 1e-9);
+  EXPECT_NEAR(c_open_unknown, c_open, 1e-9);
+  // the wall itself stays out of reach: known floor beside it costs only its clearance
+  EXPECT_LT(c_seen - c_open, 0.5 * p.body_touch_cost);
+  // a top below the hands (a 15 cm ottoman) passes under them, seen or not
+  Fog low_seen = FlatFog(40, 30, 0.04);
+  FillBox(&low_seen, 0.80, 0.20, 0.84, 0.60, CellType::kBorder, 0.15f);
+  Fog low_hidden = low_seen;
+  FillBox(&low_hidden, 0.84, 0.20, 0.88, 0.60, CellType::kUnknown, -INFINITY);
+  ASSERT_LT(0.15, p.hand_low);
+  EXPECT_NEAR(walk_cost(low_hidden), walk_cost(low_seen), 1e-9);
+}
+
 // A standing turn in place between two valid headings is offered exactly when no cell the
 // soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
 // origin's level, and costs body_touch_cost more when the body (the legs' band as deep as the
@@ -499,7 +541,20 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
             const bool solid = type == CellType::kObstacle || type == CellType::kTunnel;
             const bool off_level = solid || (known && std::abs(double(h) - level) > p.h_floor) ||
                                    (type == CellType::kBorder && !std::isfinite(h));
-            const bool touch = solid || (known && double(h) - level > p.h_stairs);
+            // an unknown cell beside a border cell more than hand_low higher
+            bool hidden_solid = false;
+            if (type == CellType::kUnknown) {
+              for (int ny = iy + dy - 1; ny <= iy + dy + 1; ++ny) {
+                for (int nx = ix + dx - 1; nx <= ix + dx + 1; ++nx) {
+                  if (!w.Contains(nx, ny)) continue;
+                  const CellType tn = fog.TypeAt(nx, ny);
+                  const float hn = fog.HeightAt(nx, ny);
+                  hidden_solid |= tn == CellType::kBorder && std::isfinite(hn) &&
+                                  double(hn) - level > p.hand_low;
+                }
+              }
+            }
+            const bool touch = solid || hidden_solid || (known && double(h) - level > p.h_stairs);
             if (!off_level && !touch) continue;
             const double u0 = (dx * std::cos(yaw) + dy * std::sin(yaw)) * w.resolution;
             const double v0 = (-dx * std::sin(yaw) + dy * std::cos(yaw)) * w.resolution;
