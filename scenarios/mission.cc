@@ -136,7 +136,10 @@ const std::vector<double> kCrawlElevations = {0.15, -0.6};
 // it from the eyes, so where the robot came by a way it did not look at, unknown cells lay
 // around its feet and barred the moves the eyes do not look along (a side-step out of a narrow
 // gap's mouth). Unknown cells that the standing footprint covers
-// (centres inside it grown by half a cell) become floor at the believed floor height.
+// (centres inside it grown by half a cell) become floor at the believed floor height, except
+// beside a floor or stairs cell on another level (more than h_floor off): the toes may reach
+// past a step's edge there, and a cell marked on the robot's level would move the edge under
+// the landing of the step down (the plan stepped back and forth before it).
 void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& robot, double floor_z,
                         perception::Fog* fog) {
   const perception::GridWindow& w = fog->window;
@@ -144,6 +147,7 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& ro
   const double across = 0.5 * p.shoulder_width + p.margin + 0.5 * w.resolution;
   const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
   const double reach = std::hypot(along, across);
+  std::vector<size_t> marked;
   int ix0, iy0, ix1, iy1;
   w.CellOf(robot.x - reach, robot.y - reach, &ix0, &iy0);
   w.CellOf(robot.x + reach, robot.y + reach, &ix1, &iy1);
@@ -155,9 +159,21 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& ro
       }
       const size_t i = size_t(w.Index(ix, iy));
       if (fog->type[i] != perception::CellType::kUnknown) continue;
-      fog->type[i] = perception::CellType::kFloor;
-      fog->height[i] = float(floor_z);
+      bool edge = false;
+      for (int jy = std::max(0, iy - 1); jy <= std::min(w.size_y - 1, iy + 1); ++jy) {
+        for (int jx = std::max(0, ix - 1); jx <= std::min(w.size_x - 1, ix + 1); ++jx) {
+          const perception::CellType t = fog->TypeAt(jx, jy);
+          edge |= (t == perception::CellType::kFloor || t == perception::CellType::kStairs) &&
+                  std::abs(fog->HeightAt(jx, jy) - floor_z) > p.h_floor;
+        }
+      }
+      if (edge) continue;
+      marked.push_back(i);
     }
+  }
+  for (const size_t i : marked) {
+    fog->type[i] = perception::CellType::kFloor;
+    fog->height[i] = float(floor_z);
   }
 }
 

@@ -71,7 +71,7 @@ INSTANTIATE_TEST_SUITE_P(Missions, Suite,
                                            "noisy_gap", "wall_ahead", "course_shifted",
                                            "turned_stairs", "thick_table", "long_wall",
                                            "table_in_divider", "doorway", "divider_opening",
-                                           "shallow_stairs", "diagonal_boxes"));
+                                           "shallow_stairs", "diagonal_boxes", "single_tread"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
