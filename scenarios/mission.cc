@@ -198,7 +198,8 @@ nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& 
 
 // Where to look from at obstacle evidence seen only from afar (ExecutionLimits::inspect_range):
 // the last pose of a plan on the map with those cells unknown before the plan passes within
-// the body's reach of one of them; nothing if that plan passes none or stays where it is.
+// the body's reach of one of them (other than those within that reach of the robot); nothing
+// if that plan passes none or stays where it is.
 std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
                                               const perception::MapState& maps,
                                               const perception::Pose2& believed,
@@ -229,10 +230,13 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
   const double reach =
       std::max(0.5 * params.shoulder_width, params.crawl_offset + 0.5 * params.crawl_length) +
       params.margin;
+  // cells within that reach of where the robot stands are none to go and look at: it has looked
+  // from here, and they lie where its eyes do not reach (behind a low wall it stands at)
+  const Eigen::Vector2d here(believed.x, believed.y);
   for (size_t k = 1; k < plan.path.size(); ++k) {
     const Eigen::Vector2d at(plan.path[k].pose_G.x, plan.path[k].pose_G.y);
     for (const Eigen::Vector2d& c : suspects) {
-      if ((c - at).norm() > reach) continue;
+      if ((c - at).norm() > reach || (c - here).norm() <= reach) continue;
       const perception::Pose2& before = plan.path[k - 1].pose_G;
       return Eigen::Vector2d(before.x, before.y);
     }
