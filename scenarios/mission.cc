@@ -209,6 +209,13 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
   if (maps.obstacle_range.size() != fog.type.size()) return std::nullopt;
   perception::Fog hopeful = fog;
   std::vector<Eigen::Vector2d> suspects;
+  // the body's reach: the shoulders standing, head and hands crawling
+  const double reach =
+      std::max(0.5 * params.shoulder_width, params.crawl_offset + 0.5 * params.crawl_length) +
+      params.margin;
+  // cells within that reach of where the robot stands are none to go and look at: it has looked
+  // from here, and they lie where its eyes do not reach (behind a low wall it stands at)
+  const Eigen::Vector2d here(believed.x, believed.y);
   const perception::GridWindow& w = fog.window;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -220,23 +227,16 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
       }
       hopeful.type[i] = perception::CellType::kUnknown;
       hopeful.height[i] = -std::numeric_limits<float>::infinity();
-      suspects.push_back(w.CellCenter(ix, iy));
+      if ((w.CellCenter(ix, iy) - here).norm() > reach) suspects.push_back(w.CellCenter(ix, iy));
     }
   }
   if (suspects.empty()) return std::nullopt;
   const nav::PlanResult plan = PlanToGoal(hopeful, believed, scenario, params, posture);
   if (plan.status != nav::PlanStatus::kOk) return std::nullopt;
-  // the body's reach: the shoulders standing, head and hands crawling
-  const double reach =
-      std::max(0.5 * params.shoulder_width, params.crawl_offset + 0.5 * params.crawl_length) +
-      params.margin;
-  // cells within that reach of where the robot stands are none to go and look at: it has looked
-  // from here, and they lie where its eyes do not reach (behind a low wall it stands at)
-  const Eigen::Vector2d here(believed.x, believed.y);
   for (size_t k = 1; k < plan.path.size(); ++k) {
     const Eigen::Vector2d at(plan.path[k].pose_G.x, plan.path[k].pose_G.y);
     for (const Eigen::Vector2d& c : suspects) {
-      if ((c - at).norm() > reach || (c - here).norm() <= reach) continue;
+      if ((c - at).norm() > reach) continue;
       const perception::Pose2& before = plan.path[k - 1].pose_G;
       return Eigen::Vector2d(before.x, before.y);
     }
