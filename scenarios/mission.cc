@@ -147,7 +147,6 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& ro
   const double across = 0.5 * p.shoulder_width + p.margin + 0.5 * w.resolution;
   const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
   const double reach = std::hypot(along, across);
-  std::vector<size_t> marked;
   int ix0, iy0, ix1, iy1;
   w.CellOf(robot.x - reach, robot.y - reach, &ix0, &iy0);
   w.CellOf(robot.x + reach, robot.y + reach, &ix1, &iy1);
@@ -168,12 +167,9 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& ro
         }
       }
       if (edge) continue;
-      marked.push_back(i);
+      fog->type[i] = perception::CellType::kFloor;
+      fog->height[i] = float(floor_z);
     }
-  }
-  for (const size_t i : marked) {
-    fog->type[i] = perception::CellType::kFloor;
-    fog->height[i] = float(floor_z);
   }
 }
 
@@ -227,7 +223,8 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
       }
       hopeful.type[i] = perception::CellType::kUnknown;
       hopeful.height[i] = -std::numeric_limits<float>::infinity();
-      if ((w.CellCenter(ix, iy) - here).norm() > reach) suspects.push_back(w.CellCenter(ix, iy));
+      const Eigen::Vector2d centre = w.CellCenter(ix, iy);
+      if ((centre - here).norm() > reach) suspects.push_back(centre);
     }
   }
   if (suspects.empty()) return std::nullopt;
