@@ -244,6 +244,35 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   return r;
 }
 
+size_t FirstBlockedPose(const perception::Fog& fog, const PlanResult& plan,
+                        const Eigen::Vector2d& goal_G, const PlannerParams& p) {
+  const size_t n = plan.path.size();
+  if (plan.status != PlanStatus::kOk || n < 2) return n;
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal,
+                            /*heuristic=*/false);
+  const perception::GridWindow& w = fog.window;
+  int s = 0, ix = 0, iy = 0;
+  w.CellOf(plan.path[0].pose_G.x, plan.path[0].pose_G.y, &ix, &iy);
+  if (!w.Contains(ix, iy) || !StateOfPose(lattice, ix, iy, plan.path[0], &s) || !lattice.Valid(s)) {
+    return 1;  // the start itself: the first move cannot be made
+  }
+  internal::Successor succ[internal::kMaxSuccessors];
+  for (size_t k = 1; k < n; ++k) {
+    int t = 0;
+    w.CellOf(plan.path[k].pose_G.x, plan.path[k].pose_G.y, &ix, &iy);
+    if (!w.Contains(ix, iy)) return n;
+    if (!StateOfPose(lattice, ix, iy, plan.path[k], &t)) return k;
+    const int count = lattice.Successors(s, succ);
+    if (std::none_of(succ, succ + count, [&](const internal::Successor& e) {
+          return e.state == t && e.move == plan.path[k].move;
+        })) {
+      return k;
+    }
+    s = t;
+  }
+  return n;
+}
+
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
   PlanResult r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);

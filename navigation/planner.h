@@ -298,6 +298,13 @@ PlanResult PlanBeyond(const perception::Fog& fog, const perception::Pose2& start
 PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, size_t from,
                         const perception::Pose2& start_G, const Eigen::Vector2d& goal_G,
                         const PlannerParams& p);
+// The index of the first pose of `plan` (from 1 on) that its move cannot reach on `fog` from the
+// pose before, as Plan would allow the moves there (a pose outside the window ends the check);
+// plan.path.size() if there is none. Paths planned on a map with some cells made unknown find
+// here where the real map stops them. Uses Plan's per-thread scratch arrays.
+size_t FirstBlockedPose(const perception::Fog& fog, const PlanResult& plan,
+                        const Eigen::Vector2d& goal_G, const PlannerParams& p);
+
 // A run of one kind of move along a path, from path[first] to path[last] (first < last): the
 // robot frame at path[first] holds the run's displacement as one motion command. Walks and
 // crawls split where the direction flips between forward and backward; each step up or down and

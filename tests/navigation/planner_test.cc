@@ -1207,5 +1207,33 @@ TEST(Planner, ContinuesAPlanWhileTheMapAllowsIt) {
             PlanStatus::kOk);
 }
 
+// A plan checked on the map it was made on has no blocked pose; on a map with an obstacle put on
+// it, the first pose blocked is the first one whose footprint the obstacle reaches, and every
+// pose before it is still allowed.
+TEST(Planner, FindsWhereAMapStopsAPlan) {
+  internal::Course course = internal::PaperCourse();
+  const PlannerParams p;
+  const PlanResult plan = Plan(course.fog, course.start_G, course.goal_G, p);
+  ASSERT_EQ(plan.status, PlanStatus::kOk);
+  ASSERT_GT(plan.path.size(), 40u);
+  EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
+  const size_t k = plan.path.size() / 2;
+  const Pose2 q = plan.path[k].pose_G;
+  Fog blocked = course.fog;
+  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
+  EXPECT_LE(first, k);
+  EXPECT_GT(first, k - 10);  // a body's length before the obstacle at most
+  // the path up to the pose before it goes on on the blocked map, the pose itself does not
+  EXPECT_EQ(
+      ContinuePlan(blocked, plan, first - 1, plan.path[first - 1].pose_G, course.goal_G, p).status,
+      PlanStatus::kNoPath);
+  PlanResult head = plan;
+  head.path.resize(first);
+  EXPECT_EQ(FirstBlockedPose(blocked, head, course.goal_G, p), head.path.size());
+  // no plan, nothing to check
+  EXPECT_EQ(FirstBlockedPose(blocked, PlanResult{}, course.goal_G, p), 0u);
+}
+
 }  // namespace
 }  // namespace fognav::navigation
