@@ -113,12 +113,17 @@ struct PlannerParams {
   // the footprint's cells alone a block may stand 0.14 m beside the origin, 12 mm inside the
   // hands' reach: a slalom moved by 1-2 cm put a hand on a block in 3 of 4 copies)
   double arm_reach = 0.152;
-  // An unknown cell beside a border cell whose top lies more than hand_low above the origin's
-  // floor counts against the body rectangle as that top would: the eyes saw the solid from one
-  // side only, and its far face or hidden corner may lie there (with 60-degree views a hand
-  // met the unseen end of a wall it walked round). The shipped humanoid's hands hang with
-  // their lowest point 0.233 m above the soles; lower tops (a 15 cm ottoman) pass under them.
+  // An unknown cell within hidden_reach of a seen floor, stairs or border cell whose height
+  // lies more than hand_low above the origin's floor counts against the body rectangle as that
+  // top would: the eyes saw the solid from one side only, and its far face or hidden corner may
+  // lie there (with 60-degree views a hand met the unseen end of a wall it walked round). The
+  // shipped humanoid's hands hang with their lowest point 0.233 m above the soles; lower tops
+  // (a 15 cm ottoman) pass under them. Before and behind the legs (the body rectangle within
+  // the stance's width grown by margin) any top more than h_stairs high counts so: a robot
+  // turning round the end of a 0.175 m block whose last 4-10 cm its eyes had never seen (too
+  // near, beside the feet, once there) put a knee on it in 3 of 6 shifted copies of a room.
   double hand_low = 0.21;
+  double hidden_reach = 0.08;
   double body_touch_cost = 0.5;  // metres-equivalent per move
   // how far the standing robot's head reaches from its origin (looking down, the head box tilts
   // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's

@@ -162,6 +162,9 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   }
   if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
   if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
+  if (!(p.hidden_reach >= 0 && p.hidden_reach <= 1.0)) {
+    Die("Plan: hidden_reach must lie in [0, 1] m");
+  }
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
@@ -222,6 +225,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   };
   const double body_back = p.body_back + p.margin, body_front = p.body_front + p.margin;
   const double body_half = std::max(half_across[0], p.arm_reach + p.margin);
+  const double legs_half = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.margin;
   for (int q = 0; q < 2; ++q) {
     const double a = half_along[q], b = half_across[q];
     const double offset = q == 0 ? 0.0 : p.crawl_offset;  // rectangle centre ahead of the origin
@@ -260,6 +264,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
                          [&](const CellStep& o) { return Covers(footprint_[0][k], o.dx, o.dy); }),
           extra.end());
       body_reach_cells_ = std::max(body_reach_cells_, max_component(extra));
+      body_extra_legs_[k].clear();
+      for (const CellStep& o : extra) {
+        body_extra_legs_[k].push_back(std::abs(in_frame(k, o.dx, o.dy).y()) <= legs_half + kEps);
+      }
     }
   }
 
@@ -294,19 +302,25 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
       }
       turn_soles_[k].clear();
       turn_body_[k].clear();
+      turn_body_legs_[k].clear();
       for (int dy = -reach; dy <= reach; ++dy) {
         for (int dx = -reach; dx <= reach; ++dx) {
-          bool soles = false, body = false;
-          for (int j = 1; j < n && !(soles && body); ++j) {
+          bool soles = false, body = false, legs = false;
+          for (int j = 1; j < n && !(soles && legs); ++j) {
             const double c = cos_j[size_t(j)], s = sin_j[size_t(j)];
             const Eigen::Vector2d uv(dx * c + dy * s, -dx * s + dy * c);
             soles = soles || in_stance(uv);
             body = body || in_body_shape(uv);
+            legs = legs || (uv.x() >= -body_back - kEps && uv.x() <= body_front + kEps &&
+                            std::abs(uv.y()) <= legs_half + kEps);
           }
           if (soles && !in_stance(in_frame(k, dx, dy)) && !in_stance(in_frame(k2, dx, dy))) {
             turn_soles_[k].push_back({dx, dy});
           }
-          if (body && !at_ends(k, k2, dx, dy)) turn_body_[k].push_back({dx, dy});
+          if (body && !at_ends(k, k2, dx, dy)) {
+            turn_body_[k].push_back({dx, dy});
+            turn_body_legs_[k].push_back(legs);
+          }
         }
       }
       body_reach_cells_ = std::max(
@@ -580,21 +594,23 @@ void Lattice::ComputeLevelRanges() {
       level_hi_[size_t(w.Index(ix, iy))] = hi;
     }
   }
-  // per unknown cell: the highest border cell beside it (the edge of a solid's top seen from
-  // one side; not obstacle cells, which stray stereo matches make too); and the squared
-  // distance to the nearest unknown cell with one
+  // per unknown cell: the highest floor, stairs or border cell within hidden_reach (the edge of
+  // a solid's top seen from one side; not obstacle cells, which stray stereo matches make too);
+  // and the squared distance to the nearest unknown cell with one
   hidden_top_.assign(n, -kFloatInf);
   std::vector<uint8_t> hidden(n, 0);
+  const int hr = int(std::lround(p_.hidden_reach / w.resolution));
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
       if (fog_.type[i] != CellType::kUnknown) continue;
       float top = -kFloatInf;
-      for (int y = std::max(0, iy - 1); y <= std::min(w.size_y - 1, iy + 1); ++y) {
-        for (int x = std::max(0, ix - 1); x <= std::min(w.size_x - 1, ix + 1); ++x) {
+      for (int y = std::max(0, iy - hr); y <= std::min(w.size_y - 1, iy + hr); ++y) {
+        for (int x = std::max(0, ix - hr); x <= std::min(w.size_x - 1, ix + hr); ++x) {
           const size_t j = size_t(w.Index(x, y));
           const CellType t = fog_.type[j];
-          if (t == CellType::kBorder && std::isfinite(fog_.height[j])) {
+          if ((t == CellType::kBorder || t == CellType::kFloor || t == CellType::kStairs) &&
+              std::isfinite(fog_.height[j])) {
             top = std::max(top, fog_.height[j]);
           }
         }
@@ -1128,10 +1144,11 @@ bool Lattice::LevelAround(int cell) const {
 }
 
 bool Lattice::BodyTouches(int cell, int heading) const {
-  return BodyMeets(cell, body_extra_[heading]);
+  return BodyMeets(cell, body_extra_[heading], body_extra_legs_[heading]);
 }
 
-bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets) const {
+bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets,
+                        const std::vector<uint8_t>& legs) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
   const double body = body_outer_radius_cells_ + kEps;
@@ -1141,16 +1158,18 @@ bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets) const {
   const bool hidden_near = hidden_d2_[size_t(cell)] <= body * body;
   if (!obstacle_near && !high_near && !hidden_near) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
-  for (const CellStep& o : offsets) {
-    const int nx = ix + o.dx, ny = iy + o.dy;
+  for (size_t j = 0; j < offsets.size(); ++j) {
+    const int nx = ix + offsets[j].dx, ny = iy + offsets[j].dy;
     if (!w.Contains(nx, ny)) continue;
     const size_t i = size_t(w.Index(nx, ny));
     const CellType t = fog_.type[i];
     if (t == CellType::kObstacle || t == CellType::kTunnel) return true;
     if (t == CellType::kUnknown) {
       // beside the edge of a top the eyes saw from one side only (a wall's far face, a block's
-      // hidden corner) the solid may go on, at the hands' height or higher
-      if (std::isfinite(centre_h) && double(hidden_top_[i]) - double(centre_h) > p_.hand_low) {
+      // hidden corner) the solid may go on: higher than a step, it meets the knees and shins;
+      // beside the legs, only the hands reach out there
+      const double low = legs[j] ? p_.h_stairs : p_.hand_low;
+      if (std::isfinite(centre_h) && double(hidden_top_[i]) - double(centre_h) > low) {
         return true;
       }
       continue;
@@ -1195,7 +1214,7 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
     }
   }
   // the body, as BodyTouches
-  if (!*touches) *touches = BodyMeets(cell, turn_body_[k]);
+  if (!*touches) *touches = BodyMeets(cell, turn_body_[k], turn_body_legs_[k]);
   return true;
 }
 

@@ -177,8 +177,11 @@ class Lattice {
   // level_lo_ / level_hi_ around `cell` lies within h_floor of the cell's own.
   bool LevelAround(int cell) const;
   // Whether the standing body at `cell`, as the offsets `offsets` (body_extra_, turn_body_),
-  // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's.
-  bool BodyMeets(int cell, const std::vector<CellStep>& offsets) const;
+  // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's, or an
+  // unknown cell beside a top (hidden_top_) higher than the part of the body there reaches
+  // down to: h_stairs where `legs` (parallel to `offsets`) is set, hand_low elsewhere.
+  bool BodyMeets(int cell, const std::vector<CellStep>& offsets,
+                 const std::vector<uint8_t>& legs) const;
   // Whether a footprint may hold cell i with the floor under its origin at centre_h: not an
   // obstacle or tunnel cell, and a known floor within `tolerance` of centre_h (a border cell
   // only so; unknown cells and cells without heights to compare are allowed).
@@ -217,8 +220,9 @@ class Lattice {
   // finite FOG height) in the square around it that holds the standing footprint and body;
   // +inf / -inf if none
   std::vector<float> level_lo_, level_hi_;
-  // per unknown cell: the highest height of a border cell beside it, -inf if none (BodyMeets:
-  // the unseen side of a solid); squared distance to the nearest unknown cell with one, cells^2
+  // per unknown cell: the highest height of a floor, stairs or border cell within hidden_reach,
+  // -inf if none (BodyMeets: the unseen side of a solid); squared distance to the nearest
+  // unknown cell with one, cells^2
   std::vector<float> hidden_top_;
   std::vector<double> hidden_d2_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
@@ -236,6 +240,9 @@ class Lattice {
   std::vector<uint8_t> level_cell_[kNumHeadings];
   // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
   std::vector<CellStep> body_extra_[kNumHeadings];
+  // [k][j]: whether body_extra_[k][j] (turn_body_[k][j]) lies before or behind the legs, within
+  // the stance's width grown by margin, rather than beside them, where only the arms reach
+  std::vector<uint8_t> body_extra_legs_[kNumHeadings], turn_body_legs_[kNumHeadings];
   // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
   // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
   std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];

@@ -501,6 +501,50 @@ TEST(Lattice, HandsKeepOffTheUnseenSideOfASolid) {
   EXPECT_NEAR(walk_cost(low_hidden), walk_cost(low_seen), 1e-9);
 }
 
+// The eyes never see the end of a block the robot turns round beside its feet: unknown cells
+// within hidden_reach of a seen top may hold it. A walk that ends with the knees over such a
+// cell costs body_touch_cost more when the top is higher than a step (the shins would meet
+// it), and nothing more when the top is a step or lower, when no top is near, or when the
+// cell is seen floor.
+TEST(Lattice, KneesKeepOffUnseenCellsNearASeenTop) {
+  const PlannerParams p;
+  ASSERT_NEAR(p.hidden_reach, 0.08, 1e-9);
+  auto world = [](float top, bool unknown) {
+    Fog fog = FlatFog(40, 30, 0.04);
+    if (top > 0) FillBox(&fog, 0.40, 0.20, 0.80, 0.60, CellType::kFloor, top);  // x cells 10-19
+    if (unknown) FillBox(&fog, 0.80, 0.20, 0.88, 0.60, CellType::kUnknown, -INFINITY);  // 20-21
+    return fog;
+  };
+  // facing -x from x cell 24 to 23 (centre 0.94 m): cell 21's centre lies 0.08 m ahead, under
+  // the knees (0.09 m + margin) but not the soles (0.06 m + margin), two cells from the top
+  const int k = NearestHeading(M_PI);
+  ASSERT_NEAR(std::abs(HeadingYaw(k)), M_PI, 1e-9);
+  auto walk_cost = [&](const Fog& fog) {
+    Lattice lattice(fog, {0.2, 1.0}, p);
+    Successor succ[kMaxSuccessors];
+    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
+                                        lattice.StateIndex(23, 8, k, Posture::kUpright), succ);
+    return move != nullptr ? move->cost : -1.0;
+  };
+  const double seen = walk_cost(world(0.175f, false)), hidden = walk_cost(world(0.175f, true));
+  ASSERT_GT(seen, 0);
+  EXPECT_NEAR(hidden - seen, p.body_touch_cost, 1e-9);
+  // a top no higher than a step, or none, makes the unknown cells nothing to keep off
+  const double open = walk_cost(world(0, false));
+  EXPECT_NEAR(walk_cost(world(0.04f, true)), open, 1e-9);
+  EXPECT_NEAR(walk_cost(world(0, true)), open, 1e-9);
+  // beyond hidden_reach the top no longer counts
+  PlannerParams near = p;
+  near.hidden_reach = 0.04;
+  const Fog fog = world(0.175f, true);  // the lattice keeps a reference
+  Lattice lattice(fog, {0.2, 1.0}, near);
+  Successor succ[kMaxSuccessors];
+  const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
+                                      lattice.StateIndex(23, 8, k, Posture::kUpright), succ);
+  ASSERT_NE(move, nullptr);
+  EXPECT_NEAR(move->cost, seen, 1e-9);
+}
+
 // A standing turn in place between two valid headings is offered exactly when no cell the
 // soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
 // origin's level, and costs body_touch_cost more when the body (the legs' band as deep as the
