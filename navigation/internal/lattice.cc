@@ -598,7 +598,6 @@ void Lattice::ComputeLevelRanges() {
   // a solid's top seen from one side; not obstacle cells, which stray stereo matches make too);
   // and the squared distance to the nearest unknown cell with one
   hidden_top_.assign(n, -kFloatInf);
-  std::vector<uint8_t> hidden(n, 0);
   const int hr = int(std::lround(p_.hidden_reach / w.resolution));
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -616,10 +615,29 @@ void Lattice::ComputeLevelRanges() {
         }
       }
       hidden_top_[i] = top;
-      hidden[i] = top != -kFloatInf;
     }
   }
-  SquaredDistanceTransform(hidden, w.size_x, w.size_y, &hidden_d2_);
+  // the highest of them in the square around each cell that holds the standing body
+  std::vector<float> row_hidden(n, -kFloatInf);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      float hi = -kFloatInf;
+      for (int x = std::max(0, ix - r); x <= std::min(w.size_x - 1, ix + r); ++x) {
+        hi = std::max(hi, hidden_top_[size_t(w.Index(x, iy))]);
+      }
+      row_hidden[size_t(w.Index(ix, iy))] = hi;
+    }
+  }
+  hidden_hi_.assign(n, -kFloatInf);
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      float hi = -kFloatInf;
+      for (int y = std::max(0, iy - r); y <= std::min(w.size_y - 1, iy + r); ++y) {
+        hi = std::max(hi, row_hidden[size_t(w.Index(ix, y))]);
+      }
+      hidden_hi_[size_t(w.Index(ix, iy))] = hi;
+    }
+  }
 }
 
 double Lattice::HeightStep(int from_cell, int to_cell) const {
@@ -1155,7 +1173,9 @@ bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets,
   const bool obstacle_near = blocked_d2_[0][size_t(cell)] <= body * body;
   const bool high_near = std::isfinite(centre_h) &&
                          double(level_hi_[size_t(cell)]) - double(centre_h) > p_.h_stairs;
-  const bool hidden_near = hidden_d2_[size_t(cell)] <= body * body;
+  const bool hidden_near =
+      std::isfinite(centre_h) &&
+      double(hidden_hi_[size_t(cell)]) - double(centre_h) > std::min(p_.h_stairs, p_.hand_low);
   if (!obstacle_near && !high_near && !hidden_near) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   for (size_t j = 0; j < offsets.size(); ++j) {

@@ -221,10 +221,9 @@ class Lattice {
   // +inf / -inf if none
   std::vector<float> level_lo_, level_hi_;
   // per unknown cell: the highest height of a floor, stairs or border cell within hidden_reach,
-  // -inf if none (BodyMeets: the unseen side of a solid); squared distance to the nearest
-  // unknown cell with one, cells^2
-  std::vector<float> hidden_top_;
-  std::vector<double> hidden_d2_;
+  // -inf if none (BodyMeets: the unseen side of a solid); per cell: the highest hidden_top_ in
+  // the square around it that level_lo_ and level_hi_ cover
+  std::vector<float> hidden_top_, hidden_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
   // (border cells block a standing robot only off its own level)
