@@ -617,8 +617,9 @@ void Lattice::ComputeLevelRanges() {
       hidden_top_[i] = top;
     }
   }
-  // the highest of them in the square around each cell that holds the standing body
-  std::vector<float> row_hidden(n, -kFloatInf);
+  // the highest of them in the square around each cell that holds the standing body (row_hi
+  // holds the rows' maxima)
+  std::vector<float>& row_hidden = row_hi;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       float hi = -kFloatInf;
