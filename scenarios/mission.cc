@@ -639,7 +639,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // exploring or inspecting, only a plan to the goal itself takes over (a goal outside the
     // window has plans toward it that lead to where the way seemed to end, and the goal passes
     // in and out of the window as the robot goes)
-    if (!moves(plan) || thrashing || (explore_to && !plan.reaches_goal)) {
+    // once it went back and forth, a plan short of the goal must lead nearer than it has been
+    const bool stuck = thrashes > 0 && !explore_to && !plan.reaches_goal &&
+                       !leads_nearer(plan, scenario.goal, nearest_to_goal);
+    if (!moves(plan) || thrashing || stuck || (explore_to && !plan.reaches_goal)) {
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
