@@ -191,6 +191,35 @@ bool StateOfPose(const internal::Lattice& lattice, int ix, int iy, const PathPos
   return true;
 }
 
+// Follows `path` from path[from] on the lattice, calling on_move(k, edge, state) for each move
+// the lattice allows, and returns where that ends: the index of the first pose its move cannot
+// reach (`from` itself if that pose is no valid state), or path.size() when the path ends or
+// leaves the window `w` (the lattice's).
+template <typename OnMove>
+size_t FollowPath(internal::Lattice& lattice, const perception::GridWindow& w,
+                  const std::vector<PathPose>& path, size_t from, OnMove on_move) {
+  int s = 0, ix = 0, iy = 0;
+  w.CellOf(path[from].pose_G.x, path[from].pose_G.y, &ix, &iy);
+  if (!w.Contains(ix, iy) || !StateOfPose(lattice, ix, iy, path[from], &s) || !lattice.Valid(s)) {
+    return from;
+  }
+  on_move(from, nullptr, s);
+  internal::Successor succ[internal::kMaxSuccessors];
+  for (size_t k = from + 1; k < path.size(); ++k) {
+    int t = 0;
+    w.CellOf(path[k].pose_G.x, path[k].pose_G.y, &ix, &iy);
+    if (!w.Contains(ix, iy)) return path.size();               // the rest lies beyond the window
+    if (!StateOfPose(lattice, ix, iy, path[k], &t)) return k;  // not a lattice pose
+    const int count = lattice.Successors(s, succ);
+    const internal::Successor* edge = std::find_if(
+        succ, succ + count, [&](const auto& e) { return e.state == t && e.move == path[k].move; });
+    if (edge == succ + count) return k;
+    on_move(k, edge, t);
+    s = t;
+  }
+  return path.size();
+}
+
 }  // namespace
 
 PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, size_t from,
@@ -201,41 +230,30 @@ PlanResult ContinuePlan(const perception::Fog& fog, const PlanResult& earlier, s
   }
   internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal,
                             /*heuristic=*/false);
-  const perception::GridWindow& w = fog.window;
-  int s = 0, ix = 0, iy = 0;
-  w.CellOf(earlier.path[from].pose_G.x, earlier.path[from].pose_G.y, &ix, &iy);
-  if (!w.Contains(ix, iy) || !StateOfPose(lattice, ix, iy, earlier.path[from], &s) ||
-      !lattice.Valid(s)) {
-    return NoPath(NoPathReason::kStartBlocked);
-  }
   PlanResult r;
-  r.path.push_back({start_G, Move::kNone, earlier.path[from].posture,
-                    lattice.FloorHeight(lattice.CellOfState(s))});
-  internal::Successor succ[internal::kMaxSuccessors];
-  for (size_t k = from + 1; k < earlier.path.size(); ++k) {
-    int t = 0;
-    w.CellOf(earlier.path[k].pose_G.x, earlier.path[k].pose_G.y, &ix, &iy);
-    if (!w.Contains(ix, iy)) break;  // the rest lies beyond the window
-    if (!StateOfPose(lattice, ix, iy, earlier.path[k], &t)) {
-      return NoPath(NoPathReason::kGoalEnclosed);  // not a lattice pose
-    }
-    const int count = lattice.Successors(s, succ);
-    const internal::Successor* edge = std::find_if(succ, succ + count, [&](const auto& e) {
-      return e.state == t && e.move == earlier.path[k].move;
-    });
-    if (edge == succ + count) return NoPath(NoPathReason::kGoalEnclosed);
-    r.cost += edge->cost;
-    r.length += edge->length;
-    r.path.push_back({lattice.PoseOf(t), edge->move, lattice.PostureOfState(t),
-                      lattice.FloorHeight(lattice.CellOfState(t))});
-    s = t;
-  }
+  int last = 0;
+  const size_t end =
+      FollowPath(lattice, fog.window, earlier.path, from,
+                 [&](size_t k, const internal::Successor* edge, int state) {
+                   last = state;
+                   const float floor_z = lattice.FloorHeight(lattice.CellOfState(state));
+                   if (edge == nullptr) {
+                     r.path.push_back({start_G, Move::kNone, earlier.path[k].posture, floor_z});
+                     return;
+                   }
+                   r.cost += edge->cost;
+                   r.length += edge->length;
+                   r.path.push_back(
+                       {lattice.PoseOf(state), edge->move, lattice.PostureOfState(state), floor_z});
+                 });
+  if (end == from) return NoPath(NoPathReason::kStartBlocked);
+  if (end < earlier.path.size()) return NoPath(NoPathReason::kGoalEnclosed);
   // with the goal outside the window, the window has moved since: the path ends at the old
   // edge, maybe inside the new window, and the walk beyond it is priced as at the edge
-  double terminal = lattice.TerminalCost(s);
+  double terminal = lattice.TerminalCost(last);
   if (!lattice.GoalInWindow()) {
-    const Eigen::Vector2d end(r.path.back().pose_G.x, r.path.back().pose_G.y);
-    terminal = (end - goal_G).norm() * p.exit_factor;
+    const Eigen::Vector2d at(r.path.back().pose_G.x, r.path.back().pose_G.y);
+    terminal = (at - goal_G).norm() * p.exit_factor;
   }
   if (terminal == kInf) return NoPath(NoPathReason::kGoalEnclosed);
   r.status = PlanStatus::kOk;
@@ -250,27 +268,9 @@ size_t FirstBlockedPose(const perception::Fog& fog, const PlanResult& plan,
   if (plan.status != PlanStatus::kOk || n < 2) return n;
   internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal,
                             /*heuristic=*/false);
-  const perception::GridWindow& w = fog.window;
-  int s = 0, ix = 0, iy = 0;
-  w.CellOf(plan.path[0].pose_G.x, plan.path[0].pose_G.y, &ix, &iy);
-  if (!w.Contains(ix, iy) || !StateOfPose(lattice, ix, iy, plan.path[0], &s) || !lattice.Valid(s)) {
-    return 1;  // the start itself: the first move cannot be made
-  }
-  internal::Successor succ[internal::kMaxSuccessors];
-  for (size_t k = 1; k < n; ++k) {
-    int t = 0;
-    w.CellOf(plan.path[k].pose_G.x, plan.path[k].pose_G.y, &ix, &iy);
-    if (!w.Contains(ix, iy)) return n;
-    if (!StateOfPose(lattice, ix, iy, plan.path[k], &t)) return k;
-    const int count = lattice.Successors(s, succ);
-    if (std::none_of(succ, succ + count, [&](const internal::Successor& e) {
-          return e.state == t && e.move == plan.path[k].move;
-        })) {
-      return k;
-    }
-    s = t;
-  }
-  return n;
+  const size_t end =
+      FollowPath(lattice, fog.window, plan.path, 0, [](size_t, const internal::Successor*, int) {});
+  return end == 0 ? 1 : end;  // a start that is no valid state: the first move cannot be made
 }
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
