@@ -2,6 +2,7 @@
 // picture.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -454,6 +455,7 @@ class Grouper {
       }
       for (; u < w; ++u) visit(u, v);
     }
+    if (p_.merge_across_missing) AddPairsAcrossMissing(labels);
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
     MergePairs(pairs);
@@ -465,6 +467,40 @@ class Grouper {
       for (int b = a + 1; b < nr; ++b)
         if (Root(a) == a && Root(b) == b) pairs.emplace_back(a, b);
     MergePairs(pairs);
+  }
+
+  // regions that only pixels without a point separate along a row or a column: one eye's view
+  // of a surface hidden from the other (by the robot's own arm, say) leaves a band without
+  // matches that splits the surface. A pixel whose point found no region breaks the bridge.
+  // Visits the runs of missing points only (a byte search finds them), each pixel of them once
+  // along its row and once down its column.
+  void AddPairsAcrossMissing(const LabelImage& labels) {
+    const int w = labels.width, h = labels.height;
+    const int32_t* lab = labels.data.data();
+    const uint8_t* valid = ls_.valid.data();
+    std::vector<std::pair<int, int>>& pairs = ws_.pairs;
+    auto bridge = [&](int a, int b) {
+      if (a >= 0 && b >= 0 && a != b) pairs.emplace_back(std::min(a, b), std::max(a, b));
+    };
+    for (int v = 0; v < h; ++v) {
+      const uint8_t* row = valid + size_t(v) * w;
+      for (int u = 0; u < w;) {
+        const void* hole = std::memchr(row + u, 0, size_t(w - u));
+        if (hole == nullptr) break;
+        const int u0 = int(static_cast<const uint8_t*>(hole) - row);
+        int u1 = u0;
+        while (u1 < w && !row[u1]) ++u1;
+        if (u0 > 0 && u1 < w) bridge(lab[v * w + u0 - 1], lab[v * w + u1]);
+        // down each column from the top of its run of missing points
+        for (int c = u0; v > 0 && c < u1; ++c) {
+          if (!valid[(v - 1) * w + c]) continue;
+          int vv = v + 1;
+          while (vv < h && !valid[vv * w + c]) ++vv;
+          if (vv < h) bridge(lab[(v - 1) * w + c], lab[vv * w + c]);
+        }
+        u = u1;
+      }
+    }
   }
 
   void MergePairs(const std::vector<std::pair<int, int>>& pairs) {

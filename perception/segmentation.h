@@ -172,6 +172,9 @@ struct SegmentParams {
   double offset_sigmas = 0;
   double correlation_px = 5;
   double offset_min = 0.01;
+  bool merge_across_missing = true;  // extension: regions that only pixels without a point
+                                     // separate along a row or column count as neighbours
+                                     // when merging (a band of a surface hidden from one eye)
   bool merge_coplanar = false;  // extension: also merge regions that are not neighbours in the
                                 // image (one surface split by an occluder) by the same test;
                                 // off by default as it also joins distinct coplanar surfaces

@@ -349,6 +349,75 @@ TEST(ScanlineGrouping, BridgesNanHoles) {
   EXPECT_GE(set.planes[0].num_points, int(0.97 * valid));
 }
 
+// Removes the depth of every pixel whose surface point lies at world y in [y0, y1]: a strip of
+// the world that one eye of a stereo pair cannot see (the robot's arm in front of it).
+void HideStrip(SceneView* view, const CameraIntrinsics& K, const Eigen::Isometry3d& X_WC, double y0,
+               double y1) {
+  for (int v = 0; v < view->depth.height; ++v) {
+    for (int u = 0; u < view->depth.width; ++u) {
+      float& z = view->depth.at(u, v);
+      if (!std::isfinite(z)) continue;
+      const Eigen::Vector3d p_C((u - K.cx) * z / K.fx, (v - K.cy) * z / K.fy, z);
+      const double y = (X_WC * p_C).y();
+      if (y >= y0 && y <= y1) z = std::numeric_limits<float>::quiet_NaN();
+    }
+  }
+}
+
+// The number of planes of a floor at height h (world) seen from a camera at `height`.
+int PlanesAtHeight(const PlaneSet& set, const Eigen::Isometry3d& X_WC, double h) {
+  int count = 0;
+  for (const Plane& pl : set.planes) {
+    const Eigen::Vector3d n_W = X_WC.linear() * pl.n;
+    const double d_W = pl.d + n_W.dot(X_WC.translation());  // n_W . p_W = d_W
+    count += n_W.z() > 0.99 && std::abs(d_W - h) < 0.01;
+  }
+  return count;
+}
+
+TEST(ScanlineGrouping, MergesASurfaceSplitByABandWithoutPoints) {
+  Scene scene;
+  const auto K = SceneIntrinsics(176, 144);
+  const auto X_WC = SceneCamera(0, 0, 0.5, 40 * kDeg);
+  SceneView view = RenderScene(scene, K, X_WC);
+  HideStrip(&view, K, X_WC, -0.12, 0.05);
+  AddDepthNoise(&view.depth, 0.0123, 5);
+  SegmentParams apart = RayNoiseParams();
+  apart.merge_across_missing = false;
+
+  // without the bridge the floor is two planes, one each side of the band; with it, one
+  EXPECT_EQ(PlanesAtHeight(SegmentPlanes(Points(view, K), apart), X_WC, 0.0), 2);
+  const PlaneSet set = SegmentPlanes(Points(view, K), RayNoiseParams());
+  EXPECT_EQ(PlanesAtHeight(set, X_WC, 0.0), 1);
+  const SegmentationScore score = ScoreSegmentation(set.labels, view.surface, view.depth);
+  int with_point = 0;
+  for (float z : view.depth.data) with_point += std::isfinite(z);
+  EXPECT_GE(score.overlap_px, 0.95 * with_point);
+}
+
+TEST(ScanlineGrouping, KeepsSurfacesOfTwoHeightsApartAcrossABandWithoutPoints) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    // a 3 cm platform right of the band (its side face inside the band), the floor left of it
+    Scene scene;
+    scene.boxes.push_back({Eigen::Vector3d(0, -3, 0), Eigen::Vector3d(4, -0.04, 0.03)});
+    const auto K = SceneIntrinsics(176, 144);
+    const auto X_WC = SceneCamera(0, 0, 0.5, 40 * kDeg);
+    SceneView view = RenderScene(scene, K, X_WC);
+    HideStrip(&view, K, X_WC, -0.12, 0.05);
+    AddDepthNoise(&view.depth, 0.0123, seed);
+
+    const PlaneSet set = SegmentPlanes(Points(view, K), RayNoiseParams());
+
+    const auto match = MatchSurfaces(set, view.surface);
+    const int top = 1 + 5;  // +z face of the box
+    ASSERT_TRUE(match.count(0) && match.count(top));
+    EXPECT_NE(match.at(0).plane, match.at(top).plane);
+    EXPECT_EQ(PlanesAtHeight(set, X_WC, 0.0), 1);
+    EXPECT_EQ(PlanesAtHeight(set, X_WC, 0.03), 1);
+  }
+}
+
 TEST(ScanlineGrouping, ReturnsNothingForEmptyAndAllNanImages) {
   const PlaneSet empty = SegmentPlanes(PointImage());
   EXPECT_TRUE(empty.planes.empty());
