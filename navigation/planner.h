@@ -122,9 +122,17 @@ struct PlannerParams {
   // the stance's width grown by margin) any top more than h_stairs high counts so: a robot
   // turning round the end of a 0.175 m block whose last 4-10 cm its eyes had never seen (too
   // near, beside the feet, once there) put a knee on it in 3 of 6 shifted copies of a room.
+  // A border cell on the low side of a top above hand_low counts so too beside the legs:
+  // stereo may end a top a cell short (a hand met the corner leg of a 0.28 m table whose top
+  // the map ended 4 cm early, the cells beyond typed border at floor height). Not before and
+  // behind the legs: every side-step through the course's 0.22 m gap would pay for it. Such a
+  // cell is only a maybe, so it costs edge_touch_cost, not body_touch_cost: enough to keep a
+  // cell further off where the way is as short, too little to turn the robot from a narrow
+  // way (at 0.5 the noisy_gap mission turned back from its gap and gave up).
   double hand_low = 0.21;
   double hidden_reach = 0.08;
   double body_touch_cost = 0.5;  // metres-equivalent per move
+  double edge_touch_cost = 0.1;  // metres-equivalent per move
   // how far the standing robot's head reaches from its origin (looking down, the head box tilts
   // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's
   // origin, so it gets down before its head meets the underside, and up only once clear of it

@@ -118,8 +118,8 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
 }
 
 void SearchMemory::Begin(int num_states) {
-  // generations live in the upper 29 bits of the stamps; start over before they wrap
-  if (generation >= (1u << 28)) {
+  // generations live in the upper 28 bits of the stamps; start over before they wrap
+  if (generation >= (1u << 27)) {
     generation = 0;
     std::fill(valid_stamp.begin(), valid_stamp.end(), 0u);
     std::fill(search_stamp.begin(), search_stamp.end(), 0u);
@@ -594,15 +594,15 @@ void Lattice::ComputeLevelRanges() {
       level_hi_[size_t(w.Index(ix, iy))] = hi;
     }
   }
-  // per unknown cell: the highest floor, stairs or border cell within hidden_reach (the edge of
-  // a solid's top seen from one side; not obstacle cells, which stray stereo matches make too);
-  // and the squared distance to the nearest unknown cell with one
+  // per unknown or border cell: the highest floor, stairs or border cell within hidden_reach
+  // (the edge of a solid's top seen from one side, or placed a cell short; not obstacle cells,
+  // which stray stereo matches make too)
   hidden_top_.assign(n, -kFloatInf);
   const int hr = int(std::lround(p_.hidden_reach / w.resolution));
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
-      if (fog_.type[i] != CellType::kUnknown) continue;
+      if (fog_.type[i] != CellType::kUnknown && fog_.type[i] != CellType::kBorder) continue;
       float top = -kFloatInf;
       for (int y = std::max(0, iy - hr); y <= std::min(w.size_y - 1, iy + hr); ++y) {
         for (int x = std::max(0, ix - hr); x <= std::min(w.size_x - 1, ix + hr); ++x) {
@@ -980,13 +980,16 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
 
 uint32_t Lattice::StateFlags(int s) {
   uint32_t& v = memory_->valid_stamp[size_t(s)];
-  if ((v >> 3) != memory_->generation) {
+  if ((v >> 4) != memory_->generation) {
     const int cell = CellOfState(s), heading = HeadingOfState(s), q = int(PostureOfState(s));
     const bool fits = FootprintFits(cell, heading, q);
-    const bool touches = fits && q == 0 && BodyTouches(cell, heading);
-    v = (memory_->generation << 3) | (fits ? 1u : 2u) | (touches ? 4u : 0u);
+    const int touch = fits && q == 0 ? BodyTouches(cell, heading) : kNoTouch;
+    v = (memory_->generation << 4) | (fits ? 1u : 2u) |
+        (touch == kTouch       ? 4u
+         : touch == kEdgeTouch ? 8u
+                               : 0u);
   }
-  return v & 7u;
+  return v & 15u;
 }
 
 bool Lattice::SweepClear(int cell, const Climb& c, double lo, double hi) const {
@@ -1082,7 +1085,7 @@ int Lattice::Successors(int s, Successor* out) {
     if (on_stairs) factor = std::max(factor, p_.stairs_factor);
     const double length = step_length_[dir];
     double cost = length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
-    if (flags & 4u) cost += p_.body_touch_cost;
+    cost += TouchCost(flags & 4u ? kTouch : flags & 8u ? kEdgeTouch : kNoTouch);
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`; standing, the soles sweep level floor only,
@@ -1091,13 +1094,12 @@ int Lattice::Successors(int s, Successor* out) {
     const int t = StateIndex(ix, iy, k2, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
-    bool touches = flags & 4u;
+    int touch = flags & 4u ? kTouch : flags & 8u ? kEdgeTouch : kNoTouch;
     if (posture == Posture::kUpright &&
-        !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touches)) {
+        !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touch)) {
       return;
     }
-    double cost = angle * p_.turn_cost_per_rad * factor;
-    if (touches) cost += p_.body_touch_cost;
+    double cost = angle * p_.turn_cost_per_rad * factor + TouchCost(touch);
     out[n++] = {t, cost, 0.0, Move::kTurn};
   };
   const int left = (k + 1) % kNumHeadings, right = (k + kNumHeadings - 1) % kNumHeadings;
@@ -1162,12 +1164,16 @@ bool Lattice::LevelAround(int cell) const {
          double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
 }
 
-bool Lattice::BodyTouches(int cell, int heading) const {
+int Lattice::BodyTouches(int cell, int heading) const {
   return BodyMeets(cell, body_extra_[heading], body_extra_legs_[heading]);
 }
 
-bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets,
-                        const std::vector<uint8_t>& legs) const {
+double Lattice::TouchCost(int touch) const {
+  return touch == kTouch ? p_.body_touch_cost : touch == kEdgeTouch ? p_.edge_touch_cost : 0.0;
+}
+
+int Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets,
+                       const std::vector<uint8_t>& legs) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
   const double body = body_outer_radius_cells_ + kEps;
@@ -1177,30 +1183,37 @@ bool Lattice::BodyMeets(int cell, const std::vector<CellStep>& offsets,
   const bool hidden_near =
       std::isfinite(centre_h) &&
       double(hidden_hi_[size_t(cell)]) - double(centre_h) > std::min(p_.h_stairs, p_.hand_low);
-  if (!obstacle_near && !high_near && !hidden_near) return false;
+  if (!obstacle_near && !high_near && !hidden_near) return kNoTouch;
+  int touch = kNoTouch;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   for (size_t j = 0; j < offsets.size(); ++j) {
     const int nx = ix + offsets[j].dx, ny = iy + offsets[j].dy;
     if (!w.Contains(nx, ny)) continue;
     const size_t i = size_t(w.Index(nx, ny));
     const CellType t = fog_.type[i];
-    if (t == CellType::kObstacle || t == CellType::kTunnel) return true;
+    if (t == CellType::kObstacle || t == CellType::kTunnel) return kTouch;
     if (t == CellType::kUnknown) {
       // beside the edge of a top the eyes saw from one side only (a wall's far face, a block's
       // hidden corner) the solid may go on: higher than a step, it meets the knees and shins;
       // beside the legs, only the hands reach out there
       const double low = legs[j] ? p_.h_stairs : p_.hand_low;
       if (std::isfinite(centre_h) && double(hidden_top_[i]) - double(centre_h) > low) {
-        return true;
+        return kTouch;
       }
       continue;
     }
+    // on the low side of a border the top's edge may lie a cell further out (stereo ends a
+    // table top's far edge short): beside the legs, a top the hands reach may be there
+    if (t == CellType::kBorder && !legs[j] && std::isfinite(centre_h) &&
+        double(hidden_top_[i]) - double(centre_h) > p_.hand_low) {
+      touch = kEdgeTouch;
+    }
     if (high_near && std::isfinite(fog_.height[i]) &&
         double(fog_.height[i]) - double(centre_h) > p_.h_stairs) {
-      return true;
+      return kTouch;
     }
   }
-  return false;
+  return touch;
 }
 
 bool Lattice::OnLevel(size_t i, float centre_h, double tolerance) const {
@@ -1218,7 +1231,7 @@ bool Lattice::OnLevel(size_t i, float centre_h, double tolerance) const {
   return std::abs(double(h) - double(centre_h)) <= tolerance;
 }
 
-bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
+bool Lattice::TurnSweepClear(int cell, int k, int* touch) const {
   const perception::GridWindow& w = fog_.window;
   const float centre_h = floor_h_[size_t(cell)];
   const int ix = cell % w.size_x, iy = cell / w.size_x;
@@ -1235,7 +1248,9 @@ bool Lattice::TurnSweepClear(int cell, int k, bool* touches) const {
     }
   }
   // the body, as BodyTouches
-  if (!*touches) *touches = BodyMeets(cell, turn_body_[k], turn_body_legs_[k]);
+  if (*touch != kTouch) {
+    *touch = std::max(*touch, BodyMeets(cell, turn_body_[k], turn_body_legs_[k]));
+  }
   return true;
 }
 

@@ -55,7 +55,8 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
 // clears them: an entry counts only if its stamp carries the current generation.
 struct SearchMemory {
   uint32_t generation = 0;
-  // generation << 3 | 1 (valid) or 2 (invalid) | 4 (valid, standing, the knees over something)
+  // generation << 4 | 1 (valid) or 2 (invalid) | 4 (valid, standing, the body over something)
+  // | 8 (valid, standing, a hand over the low side of a high top's edge only)
   std::vector<uint32_t> valid_stamp;
   std::vector<uint32_t> search_stamp;  // generation << 1 (reached) | 1 (closed)
   std::vector<double> g;
@@ -82,6 +83,9 @@ enum class End : uint8_t {
 
 class Lattice {
  public:
+  // how a standing body meets the map around it (BodyMeets), in increasing order
+  static constexpr int kNoTouch = 0, kEdgeTouch = 1, kTouch = 2;
+
   // Prepares per-cell permissions, costs, footprints and the heuristic for one query, using
   // `memory` (or memory of its own when null) for the per-state arrays, for a search that ends
   // as `end` says (GoalInWindow() is false unless it ends in the goal region). Without
@@ -140,8 +144,11 @@ class Lattice {
   // (ix, iy), on floor centre_h, rises more than head_low above it.
   bool HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const;
   // Whether the standing body at (cell, heading) reaches over an obstacle or tunnel cell, or a
-  // floor more than h_stairs above the origin's, beyond the soles' footprint.
-  bool BodyTouches(int cell, int heading) const;
+  // floor more than h_stairs above the origin's, beyond the soles' footprint (kTouch), or
+  // only a hand over the low side of a high top's edge (kEdgeTouch; see BodyMeets).
+  int BodyTouches(int cell, int heading) const;
+  // body_touch_cost, edge_touch_cost or 0 for kTouch, kEdgeTouch or kNoTouch
+  double TouchCost(int touch) const;
   // Whether blind move b (see blind_lead_) to (ix, iy) would bring an unknown cell (or one
   // beyond the window) under the footprint of posture q and heading k.
   bool BlindIntoUnknown(int ix, int iy, int q, int k, int b) const;
@@ -179,18 +186,19 @@ class Lattice {
   // Whether the standing body at `cell`, as the offsets `offsets` (body_extra_, turn_body_),
   // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's, or an
   // unknown cell beside a top (hidden_top_) higher than the part of the body there reaches
-  // down to: h_stairs where `legs` (parallel to `offsets`) is set, hand_low elsewhere.
-  bool BodyMeets(int cell, const std::vector<CellStep>& offsets,
-                 const std::vector<uint8_t>& legs) const;
+  // down to: h_stairs where `legs` (parallel to `offsets`) is set, hand_low elsewhere; or,
+  // where `legs` is not set, a border cell beside a top more than hand_low high (kEdgeTouch:
+  // the map may have ended the top a cell short). Returns kTouch, kEdgeTouch or kNoTouch.
+  int BodyMeets(int cell, const std::vector<CellStep>& offsets,
+                const std::vector<uint8_t>& legs) const;
   // Whether a footprint may hold cell i with the floor under its origin at centre_h: not an
   // obstacle or tunnel cell, and a known floor within `tolerance` of centre_h (a border cell
   // only so; unknown cells and cells without heights to compare are allowed).
   bool OnLevel(size_t i, float centre_h, double tolerance) const;
   // For a standing turn in place at `cell` between heading k and k + 1: false if the soles
   // sweep an obstacle or tunnel cell or a known floor more than h_floor off the origin's (a
-  // corner would catch on a riser); sets *touches if the body sweeps an obstacle or tunnel cell
-  // or a floor more than h_stairs above the origin's.
-  bool TurnSweepClear(int cell, int k, bool* touches) const;
+  // corner would catch on a riser); raises *touch to what the body sweeps, as BodyMeets.
+  bool TurnSweepClear(int cell, int k, int* touch) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
   void ComputeLevelRanges();
@@ -220,8 +228,9 @@ class Lattice {
   // finite FOG height) in the square around it that holds the standing footprint and body;
   // +inf / -inf if none
   std::vector<float> level_lo_, level_hi_;
-  // per unknown cell: the highest height of a floor, stairs or border cell within hidden_reach,
-  // -inf if none (BodyMeets: the unseen side of a solid); per cell: the highest hidden_top_ in
+  // per unknown or border cell: the highest height of a floor, stairs or border cell within
+  // hidden_reach, -inf if none (BodyMeets: the unseen side of a solid, or the low side of an
+  // edge the map may have placed a cell short); per cell: the highest hidden_top_ in
   // the square around it that level_lo_ and level_hi_ cover
   std::vector<float> hidden_top_, hidden_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it

@@ -545,6 +545,34 @@ TEST(Lattice, KneesKeepOffUnseenCellsNearASeenTop) {
   EXPECT_NEAR(move->cost, seen, 1e-9);
 }
 
+// The low side of a top's edge (border cells at floor height) counts as the top for the body,
+// since the map may end a top a cell short: a hand passing 0.16 m from such a cell beside a
+// 0.28 m table top pays edge_touch_cost; beside a 0.15 m top (below the hands) it does not.
+TEST(Lattice, HandsKeepOffTheLowSideOfATopsEdge) {
+  const PlannerParams p;
+  auto world = [](float top, bool border) {
+    Fog fog = FlatFog(40, 30, 0.04);
+    FillBox(&fog, 0.40, 0.20, 0.80, 0.60, CellType::kFloor, top);                // x cells 10-19
+    if (border) FillBox(&fog, 0.80, 0.20, 0.84, 0.60, CellType::kBorder, 0.0f);  // cell 20
+    return fog;
+  };
+  // facing +y from y cell 8 to 9 at x cell 24 (0.98 m): cell 20's centre lies 0.16 m to the
+  // right, inside the hands' reach (0.152 m + margin), the top's cell 19 0.20 m, outside it
+  const int k = NearestHeading(M_PI / 2);
+  ASSERT_NEAR(HeadingYaw(k), M_PI / 2, 1e-9);
+  auto walk_cost = [&](const Fog& fog) {
+    Lattice lattice(fog, {0.2, 1.0}, p);
+    Successor succ[kMaxSuccessors];
+    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
+                                        lattice.StateIndex(24, 9, k, Posture::kUpright), succ);
+    return move != nullptr ? move->cost : -1.0;
+  };
+  const double open = walk_cost(world(0.28f, false));
+  ASSERT_GT(open, 0);
+  EXPECT_NEAR(walk_cost(world(0.28f, true)) - open, p.edge_touch_cost, 1e-9);
+  EXPECT_NEAR(walk_cost(world(0.15f, true)), walk_cost(world(0.15f, false)), 1e-9);
+}
+
 // A standing turn in place between two valid headings is offered exactly when no cell the
 // soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
 // origin's level, and costs body_touch_cost more when the body (the legs' band as deep as the
@@ -553,17 +581,25 @@ TEST(Lattice, KneesKeepOffUnseenCellsNearASeenTop) {
 // the body at the start heading (paid for on the way there). Checked cell by cell with the
 // shapes turned in 100 steps (a cell centre moves by less than 1 mm per step); a cell whose
 // centre lies within 2 mm of a shape's edge may count either way.
-TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
+struct TurnCounts {
+  int offered = 0, refused = 0, touching = 0, edge_touching = 0;
+};
+
+void CheckTurnsInPlace(const Fog& fog, TurnCounts* counts) {
   const PlannerParams p;
-  const Fog fog = LevelsFog();
   const perception::GridWindow& w = fog.window;
   Lattice lattice(fog, {1.5, 0.7}, p);
   const double sa = 0.5 * p.depth + p.level_margin, sb = 0.5 * p.stance_width + p.level_margin;
   const double back = p.body_back + p.margin, front = p.body_front + p.margin;
   const double half = p.arm_reach + p.margin;
   const double a = 0.5 * p.depth + p.margin, b = 0.5 * p.shoulder_width + p.margin;
+  const double legs_half = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.margin;
+  const int hr = int(std::lround(p.hidden_reach / w.resolution));
   Successor succ[kMaxSuccessors];
-  int offered = 0, refused = 0, touching = 0;
+  int& offered = counts->offered;
+  int& refused = counts->refused;
+  int& touching = counts->touching;
+  int& edge_touching = counts->edge_touching;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const double level = lattice.FloorHeight(w.Index(ix, iy));
@@ -576,6 +612,7 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
         const double turn = std::atan2(std::sin(d), std::cos(d));
         // per cell: inside at some angle by more than 2 mm (surely), by less (maybe)
         bool soles_surely = false, soles_maybe = false, body_surely = false, body_maybe = false;
+        bool edge_surely = false, edge_maybe = false;  // a hand over a border's low side only
         for (int dy = -6; dy <= 6; ++dy) {
           for (int dx = -6; dx <= 6; ++dx) {
             if (!w.Contains(ix + dx, iy + dy)) continue;
@@ -585,21 +622,32 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
             const bool solid = type == CellType::kObstacle || type == CellType::kTunnel;
             const bool off_level = solid || (known && std::abs(double(h) - level) > p.h_floor) ||
                                    (type == CellType::kBorder && !std::isfinite(h));
-            // an unknown cell beside a border cell more than hand_low higher
-            bool hidden_solid = false;
-            if (type == CellType::kUnknown) {
-              for (int ny = iy + dy - 1; ny <= iy + dy + 1; ++ny) {
-                for (int nx = ix + dx - 1; nx <= ix + dx + 1; ++nx) {
+            // an unknown or border cell within hidden_reach of a floor, stairs or border cell
+            // higher than the body reaches down there: hand_low anywhere, h_stairs at the legs
+            double hidden_top = -std::numeric_limits<double>::infinity();
+            if (type == CellType::kUnknown || type == CellType::kBorder) {
+              for (int ny = iy + dy - hr; ny <= iy + dy + hr; ++ny) {
+                for (int nx = ix + dx - hr; nx <= ix + dx + hr; ++nx) {
                   if (!w.Contains(nx, ny)) continue;
                   const CellType tn = fog.TypeAt(nx, ny);
                   const float hn = fog.HeightAt(nx, ny);
-                  hidden_solid |= tn == CellType::kBorder && std::isfinite(hn) &&
-                                  double(hn) - level > p.hand_low;
+                  if ((tn == CellType::kBorder || tn == CellType::kFloor ||
+                       tn == CellType::kStairs) &&
+                      std::isfinite(hn)) {
+                    hidden_top = std::max(hidden_top, double(hn));
+                  }
                 }
               }
             }
-            const bool touch = solid || hidden_solid || (known && double(h) - level > p.h_stairs);
-            if (!off_level && !touch) continue;
+            // (the soles' footprint at the end is the end state's to check, as level floor)
+            const bool hidden_legs = type == CellType::kUnknown && hidden_top - level > p.h_stairs;
+            const bool hidden_hands = hidden_top - level > p.hand_low;
+            const bool border = type == CellType::kBorder;
+            const bool touch = solid || (known && double(h) - level > p.h_stairs);
+            if (!off_level && !touch && !hidden_legs && !hidden_hands) continue;
+            const double c1 = std::cos(yaw + turn), s1 = std::sin(yaw + turn);
+            const double u1 = (dx * c1 + dy * s1) * w.resolution;
+            const double v1 = (-dx * s1 + dy * c1) * w.resolution;
             const double u0 = (dx * std::cos(yaw) + dy * std::sin(yaw)) * w.resolution;
             const double v0 = (-dx * std::sin(yaw) + dy * std::cos(yaw)) * w.resolution;
             const bool at_start =
@@ -617,8 +665,29 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
                                    (std::abs(u) <= a + g && std::abs(v) <= b + g)
                              : (u >= -back - g && u <= front + g && std::abs(v) <= b + g) ||
                                    (std::abs(u) <= a + g && std::abs(v) <= half + g);
+                // the legs' band: at the end pose as wide as the legs, on the way as deep as
+                // the body rectangle
+                auto legs_band = [&](double gg) {
+                  return std::abs(v) <= legs_half + gg &&
+                         (j == 100 ? in_body : u >= -back - gg && u <= front + gg);
+                };
+                const bool in_legs = legs_band(g);
+                // cells the end state covers count as it sees them: never under its soles,
+                // with its own legs' band
+                const bool in_end_soles = std::abs(u1) <= a - g && std::abs(v1) <= b - g;
+                const bool in_end_body =
+                    (u1 >= -back + g && u1 <= front - g && std::abs(v1) <= half - g) ||
+                    in_end_soles;
+                // unknown cells: the hands' top anywhere, a step's at the legs; border cells
+                // (their low side): the hands' top beside the legs only, at the lesser cost
+                const bool hidden_here = (hidden_hands && !border) || (hidden_legs && in_legs);
+                const bool edge_here = hidden_hands && border && !legs_band(-g);
+                const bool counted =
+                    !in_end_soles && (j == 100 || !in_end_body) && in_body && (g > 0 || !at_start);
                 (g < 0 ? soles_surely : soles_maybe) |= off_level && in_soles;
-                (g < 0 ? body_surely : body_maybe) |= touch && in_body && (g > 0 || !at_start);
+                (g < 0 ? body_surely : body_maybe) |=
+                    (touch && in_body && (g > 0 || !at_start)) || (hidden_here && counted);
+                (g < 0 ? edge_surely : edge_maybe) |= edge_here && counted;
               }
             }
           }
@@ -639,17 +708,41 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
         if (body_surely) {
           EXPECT_NEAR(extra, p.body_touch_cost, 1e-9) << "cell " << ix << "," << iy << " " << k;
         }
-        if (!body_maybe) {
+        if (!body_maybe && edge_surely) {
+          EXPECT_NEAR(extra, p.edge_touch_cost, 1e-9) << "cell " << ix << "," << iy << " " << k;
+        }
+        if (!body_maybe && !edge_maybe) {
           EXPECT_NEAR(extra, 0.0, 1e-9) << "cell " << ix << "," << iy << " " << k;
         }
+        edge_touching += !body_maybe && edge_surely;
         touching += extra > 0;
       }
     }
   }
+}
+
+TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
+  TurnCounts counts;
+  CheckTurnsInPlace(LevelsFog(), &counts);
   // the world has all three, so the comparison means something
-  EXPECT_GT(offered, 3000);
-  EXPECT_GT(refused, 20);
-  EXPECT_GT(touching, 100);
+  EXPECT_GT(counts.offered, 3000);
+  EXPECT_GT(counts.refused, 20);
+  EXPECT_GT(counts.touching, 100);
+}
+
+TEST(Lattice, TurnsInPlaceBesideATopsLowSidePayTheEdgeCost) {
+  // a 0.28 m top whose low side the map typed border at floor height, a 0.15 m one likewise
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.40, 0.40, 0.80, 0.80, CellType::kFloor, 0.28f);
+  FillBox(&fog, 0.36, 0.36, 0.84, 0.84, CellType::kBorder, 0.0f);
+  FillBox(&fog, 0.40, 0.40, 0.80, 0.80, CellType::kFloor, 0.28f);
+  FillBox(&fog, 1.00, 0.40, 1.20, 0.80, CellType::kFloor, 0.15f);
+  FillBox(&fog, 0.96, 0.36, 1.24, 0.84, CellType::kBorder, 0.0f);
+  FillBox(&fog, 1.00, 0.40, 1.20, 0.80, CellType::kFloor, 0.15f);
+  TurnCounts counts;
+  CheckTurnsInPlace(fog, &counts);
+  EXPECT_GT(counts.offered, 3000);
+  EXPECT_GT(counts.edge_touching, 20);
 }
 
 }  // namespace
