@@ -152,7 +152,8 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     if (label >= 0) moments[size_t(label)].Add(p_G);
     out.push_back({p_G, kNegInf});
     plane_of.push_back(label);
-    on_rim.push_back(rims != nullptr && rims->data[i] != 0);
+    const uint8_t rim = rims != nullptr ? rims->data[i] : 0;
+    on_rim.push_back(rim != 0 && !(rim == kColumnRim && p_G.z() > params.keep_column_rims_above));
   }
 
   // floor candidates: horizontal, seen from above (so facing up), at least a sole large

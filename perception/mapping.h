@@ -96,6 +96,14 @@ struct LabelParams {
   double max_range = std::numeric_limits<double>::infinity();
   // Floor on the height sigma of a floor-candidate plane, metres.
   double min_height_sigma = 0.001;
+  // Points on a column rim only (kColumnRim: a farther surface above or below, none beside)
+  // higher than this (grid frame z, metres) are kept although not on a floor candidate. A
+  // table top's edge at eye height is a band a few rows high seen edge-on between farther
+  // surfaces, all of it column rim: dropped, it left no trace in the map, and a standing
+  // robot's head met a top at 0.49-0.52 m. The caller sets it per view from the floor under
+  // the robot (PerceptionParams::rim_keep_height); fattened points up there only widen a
+  // ceiling a little. +inf keeps no rim point.
+  double keep_column_rims_above = std::numeric_limits<double>::infinity();
 };
 
 // A range point in the grid frame with the height h of the horizontal plane it belongs to, or
@@ -116,10 +124,11 @@ struct LabelledPoint {
 // the robot's own body `body_G` (boxes in the grid frame from the robot's kinematic pose).
 // `planes.labels` must have the size of `points_C`; label -1 or an empty label image means no
 // plane. Plane normals may point either way; only their axis is used.
-// Extension: where `rims` (the size of `points_C`) is 1, a point lies on the rim of a nearer
-// surface in stereo data (DepthEdgeRims), where its position may be the nearer surface's
-// although it sees the background; it still counts for its plane's height, but is kept only if
-// that plane is a floor candidate, so that fattened stereo puts no obstacles beside objects.
+// Extension: where `rims` (the size of `points_C`) is not 0, a point lies on the rim of a
+// nearer surface in stereo data (DepthEdgeRims), where its position may be the nearer
+// surface's although it sees the background; it still counts for its plane's height, but is
+// kept only if that plane is a floor candidate (or, on a column rim only, if it lies above
+// params.keep_column_rims_above), so that fattened stereo puts no obstacles beside objects.
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
                                        const PlaneSet& planes, const Eigen::Isometry3d& X_GC,
                                        const std::vector<OrientedBox>& body_G,

@@ -70,11 +70,13 @@ struct StereoParams {
 PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const CameraIntrinsics& K,
                             const StereoParams& p = {}, Image<float>* disparity_px = nullptr);
 
-// The rims of nearer surfaces in a disparity image (NaN = none), 1 where a pixel is within
-// p.edge_margin pixels along its row of a disparity at least p.edge_jump smaller (or, to its
-// left, of a failed match: the occluded background), or within 2 * p.edge_margin rows in its
-// column of one smaller by p.edge_jump and by the fraction p.edge_depth_ratio. Fattened pixels
-// lie there; so do the true edges of nearer surfaces, which cannot be told apart from them.
+// The rims of nearer surfaces in a disparity image (NaN = none): kRowRim where a pixel is
+// within p.edge_margin pixels along its row of a disparity at least p.edge_jump smaller (or, to
+// its left, of a failed match: the occluded background), else kColumnRim where it is within
+// 2 * p.edge_margin rows in its column of one smaller by p.edge_jump and by the fraction
+// p.edge_depth_ratio, else 0. Fattened pixels lie there; so do the true edges of nearer
+// surfaces, which cannot be told apart from them.
+constexpr uint8_t kRowRim = 1, kColumnRim = 2;
 Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParams& p = {});
 
 // 3D points from a depth image (metres along the optical axis, NaN or <= 0 = none): pixel (u, v)

@@ -202,8 +202,10 @@ Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParam
       for (int k = std::max(0, v - 2 * m); k <= std::min(h - 1, v + 2 * m); ++k) {
         far_in_column = std::min(far_in_column, median.at(u, k));
       }
-      rims.at(u, v) = d[u] - far >= jump ||
-                      (d[u] - far_in_column >= jump && far_in_column <= keep_ratio * d[u]);
+      rims.at(u, v) = d[u] - far >= jump ? kRowRim
+                      : d[u] - far_in_column >= jump && far_in_column <= keep_ratio * d[u]
+                          ? kColumnRim
+                          : 0;
     }
   }
   return rims;

@@ -112,7 +112,9 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
     rims = perception::DepthEdgeRims(result.disparity, params.stereo);
     if (params.subsample) rims = perception::Subsample2x(rims);
   }
-  input.points = perception::LabelPoints(params.label, result.points, result.planes, X_GC, body_G,
+  perception::LabelParams label = params.label;
+  label.keep_column_rims_above = floor_z + params.rim_keep_height;
+  input.points = perception::LabelPoints(label, result.points, result.planes, X_GC, body_G,
                                          rims.empty() ? nullptr : &rims);
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);

@@ -38,6 +38,10 @@ struct PerceptionParams {
   perception::SegmentParams segment_ideal = perception::PreciseRangeParams();  // C_max 10
   bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
   perception::LabelParams label;
+  // stereo: points on column rims this high above the floor under the robot still count
+  // (LabelParams::keep_column_rims_above); the planner keeps the standing head off anything
+  // higher than 0.40 m (PlannerParams::head_low)
+  double rim_keep_height = 0.40;
   perception::MapParams map = MapDefaults();
   perception::LocalizationParams localization;
 };

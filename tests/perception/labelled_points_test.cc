@@ -138,7 +138,8 @@ TEST(LabelPoints, SelfFilterDropsPointsOnTheBody) {
   OrientedBox foot = AlignedBox(0.40, 0.52, -0.04, 0.04, 0.0, 0.04);
   foot.X_FB.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()).matrix();
   LabelParams params;
-  const std::vector<LabelledPoint> all = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  const std::vector<LabelledPoint> all =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
   const std::vector<LabelledPoint> kept =
       LabelPoints(params, frame.points_C, frame.planes, X_WC, {foot});
   const Eigen::Isometry3d X_BG = foot.X_FB.inverse();
@@ -189,6 +190,33 @@ TEST(LabelPoints, RimPointsAreKeptOnlyOnFloorCandidates) {
   const Image<uint8_t> nowhere(kK.width_px, kK.height_px, 0);
   EXPECT_EQ(LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_WC, {}, &nowhere).size(),
             all.size());
+}
+
+// Column rims only (a farther surface above or below) keep their points above
+// keep_column_rims_above: a 0.3 m box's side is all rim; marked as column rim its upper part
+// stays, marked as row rim none of it.
+TEST(LabelPoints, ColumnRimPointsAboveTheKeepHeightAreKept) {
+  const std::vector<OrientedBox> world = {Floor(), AlignedBox(0.8, 1.2, -0.2, 0.2, 0.0, 0.3)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {1.0, 0, 0});
+  const internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  LabelParams params;
+  params.keep_column_rims_above = 0.2;
+  const std::vector<LabelledPoint> all =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  int floor_candidates = 0, high_side = 0;
+  for (const LabelledPoint& lp : all) {
+    floor_candidates += std::isfinite(lp.h);
+    high_side += !std::isfinite(lp.h) && lp.p_G.z() > 0.2;
+  }
+  EXPECT_GT(high_side, 100);
+  const Image<uint8_t> column(kK.width_px, kK.height_px, kColumnRim);
+  const std::vector<LabelledPoint> kept =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {}, &column);
+  EXPECT_EQ(kept.size(), size_t(floor_candidates + high_side));
+  for (const LabelledPoint& lp : kept) EXPECT_TRUE(std::isfinite(lp.h) || lp.p_G.z() > 0.2);
+  const Image<uint8_t> row(kK.width_px, kK.height_px, kRowRim);
+  EXPECT_EQ(LabelPoints(params, frame.points_C, frame.planes, X_WC, {}, &row).size(),
+            size_t(floor_candidates));
 }
 
 }  // namespace

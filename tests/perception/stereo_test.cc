@@ -178,7 +178,7 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   Image<float> wall_disparity;
   StereoPointImage(wall_left, wall_right, K, StereoParams(), &wall_disparity);
   int wall_rims = 0;
-  for (uint8_t r : DepthEdgeRims(wall_disparity).data) wall_rims += r;
+  for (uint8_t r : DepthEdgeRims(wall_disparity).data) wall_rims += r != 0;
   EXPECT_LT(wall_rims, 176 * 144 / 100);
   // a side wall 0.25 m beside the eye, seen at a slant from 0.2 m to 3 m away: its disparity
   // falls by 0.2 px per pixel along the rows, in terraces; most of it is no rim
@@ -194,7 +194,7 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   for (size_t i = 0; i < corridor_rims.data.size(); ++i) {
     if (corridor_truth.surface.data[i] < 7 || !std::isfinite(corridor_disparity.data[i])) continue;
     ++side;
-    side_rims += corridor_rims.data[i];
+    side_rims += corridor_rims.data[i] != 0;
   }
   std::printf("slanted side wall: %d of %d pixels on rims\n", side_rims, side);
   EXPECT_GT(side, 2000);
@@ -227,6 +227,22 @@ TEST(Stereo, FattenedPixelsBelowAnOverhangLieOnItsRim) {
   EXPECT_LE(fattened_off_rims, fattened / 10);
   EXPECT_GT(underside, 2000);
   EXPECT_GT(underside_off_rims, underside * 3 / 4);
+}
+
+// A band a few rows high nearer than what lies above, below and beside it (a table top's edge
+// seen edge-on): column rim in its middle, row rim at its ends, nothing on the background.
+TEST(Stereo, RimsOfAThinBandAreColumnRimsButAtItsEnds) {
+  Image<float> disparity(176, 144, 5.0f);
+  for (int v = 60; v < 66; ++v)
+    for (int u = 40; u < 120; ++u) disparity.at(u, v) = 10.0f;
+  const Image<uint8_t> rims = DepthEdgeRims(disparity);
+  for (int v = 60; v < 66; ++v) {
+    EXPECT_EQ(rims.at(80, v), kColumnRim) << v;
+    EXPECT_EQ(rims.at(41, v), kRowRim) << v;
+    EXPECT_EQ(rims.at(118, v), kRowRim) << v;
+  }
+  EXPECT_EQ(rims.at(80, 50), 0);
+  EXPECT_EQ(rims.at(20, 62), 0);
 }
 
 TEST(Stereo, UntexturedPairGivesNoPoints) {
