@@ -984,10 +984,7 @@ uint32_t Lattice::StateFlags(int s) {
     const int cell = CellOfState(s), heading = HeadingOfState(s), q = int(PostureOfState(s));
     const bool fits = FootprintFits(cell, heading, q);
     const int touch = fits && q == 0 ? BodyTouches(cell, heading) : kNoTouch;
-    v = (memory_->generation << 4) | (fits ? 1u : 2u) |
-        (touch == kTouch       ? 4u
-         : touch == kEdgeTouch ? 8u
-                               : 0u);
+    v = (memory_->generation << 4) | (fits ? 1u : 2u) | (uint32_t(touch) << 2);
   }
   return v & 15u;
 }
@@ -1085,7 +1082,7 @@ int Lattice::Successors(int s, Successor* out) {
     if (on_stairs) factor = std::max(factor, p_.stairs_factor);
     const double length = step_length_[dir];
     double cost = length * (factor + 0.5 * (cell_cost_[size_t(cell)] + cell_cost_[size_t(to)]));
-    cost += TouchCost(flags & 4u ? kTouch : flags & 8u ? kEdgeTouch : kNoTouch);
+    cost += TouchCost(int(flags >> 2));
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`; standing, the soles sweep level floor only,
@@ -1094,7 +1091,7 @@ int Lattice::Successors(int s, Successor* out) {
     const int t = StateIndex(ix, iy, k2, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
-    int touch = flags & 4u ? kTouch : flags & 8u ? kEdgeTouch : kNoTouch;
+    int touch = int(flags >> 2);
     if (posture == Posture::kUpright &&
         !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touch)) {
       return;

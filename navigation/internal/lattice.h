@@ -55,8 +55,8 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
 // clears them: an entry counts only if its stamp carries the current generation.
 struct SearchMemory {
   uint32_t generation = 0;
-  // generation << 4 | 1 (valid) or 2 (invalid) | 4 (valid, standing, the body over something)
-  // | 8 (valid, standing, a hand over the low side of a high top's edge only)
+  // generation << 4 | 1 (valid) or 2 (invalid) | touch << 2 (valid and standing: how the body
+  // meets the map, Lattice::kNoTouch, kEdgeTouch or kTouch)
   std::vector<uint32_t> valid_stamp;
   std::vector<uint32_t> search_stamp;  // generation << 1 (reached) | 1 (closed)
   std::vector<double> g;

@@ -383,6 +383,17 @@ const Successor* SuccessorTo(Lattice* lattice, int s, int t, Successor* succ) {
   return nullptr;
 }
 
+// The cost of the standing move from cell (x0, y0) to (x1, y1) at heading k on `fog` with goal
+// `goal`, or -1 if the lattice offers no such move.
+double StandingMoveCost(const Fog& fog, const Eigen::Vector2d& goal, const PlannerParams& p, int k,
+                        int x0, int y0, int x1, int y1) {
+  Lattice lattice(fog, goal, p);
+  Successor succ[kMaxSuccessors];
+  const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(x0, y0, k, Posture::kUpright),
+                                      lattice.StateIndex(x1, y1, k, Posture::kUpright), succ);
+  return move != nullptr ? move->cost : -1.0;
+}
+
 // A standing robot's tilted head reaches head_reach + margin (3 cells): nothing higher than
 // head_low may lie there, a low block may.
 TEST(Lattice, HeadKeepsClearOfTallSolids) {
@@ -478,11 +489,7 @@ TEST(Lattice, HandsKeepOffTheUnseenSideOfASolid) {
   const int k = NearestHeading(M_PI / 2);
   ASSERT_NEAR(HeadingYaw(k), M_PI / 2, 1e-9);
   auto walk_cost = [&](const Fog& fog) {
-    Lattice lattice(fog, {1.0, 1.1}, p);
-    Successor succ[kMaxSuccessors];
-    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(25, 8, k, Posture::kUpright),
-                                        lattice.StateIndex(25, 9, k, Posture::kUpright), succ);
-    return move != nullptr ? move->cost : -1.0;
+    return StandingMoveCost(fog, {1.0, 1.1}, p, k, 25, 8, 25, 9);
   };
   const double c_seen = walk_cost(seen), c_hidden = walk_cost(hidden);
   const double c_open = walk_cost(open), c_open_unknown = walk_cost(open_unknown);
@@ -520,11 +527,7 @@ TEST(Lattice, KneesKeepOffUnseenCellsNearASeenTop) {
   const int k = NearestHeading(M_PI);
   ASSERT_NEAR(std::abs(HeadingYaw(k)), M_PI, 1e-9);
   auto walk_cost = [&](const Fog& fog) {
-    Lattice lattice(fog, {0.2, 1.0}, p);
-    Successor succ[kMaxSuccessors];
-    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
-                                        lattice.StateIndex(23, 8, k, Posture::kUpright), succ);
-    return move != nullptr ? move->cost : -1.0;
+    return StandingMoveCost(fog, {0.2, 1.0}, p, k, 24, 8, 23, 8);
   };
   const double seen = walk_cost(world(0.175f, false)), hidden = walk_cost(world(0.175f, true));
   ASSERT_GT(seen, 0);
@@ -536,13 +539,7 @@ TEST(Lattice, KneesKeepOffUnseenCellsNearASeenTop) {
   // beyond hidden_reach the top no longer counts
   PlannerParams near = p;
   near.hidden_reach = 0.04;
-  const Fog fog = world(0.175f, true);  // the lattice keeps a reference
-  Lattice lattice(fog, {0.2, 1.0}, near);
-  Successor succ[kMaxSuccessors];
-  const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
-                                      lattice.StateIndex(23, 8, k, Posture::kUpright), succ);
-  ASSERT_NE(move, nullptr);
-  EXPECT_NEAR(move->cost, seen, 1e-9);
+  EXPECT_NEAR(StandingMoveCost(world(0.175f, true), {0.2, 1.0}, near, k, 24, 8, 23, 8), seen, 1e-9);
 }
 
 // The low side of a top's edge (border cells at floor height) counts as the top for the body,
@@ -561,11 +558,7 @@ TEST(Lattice, HandsKeepOffTheLowSideOfATopsEdge) {
   const int k = NearestHeading(M_PI / 2);
   ASSERT_NEAR(HeadingYaw(k), M_PI / 2, 1e-9);
   auto walk_cost = [&](const Fog& fog) {
-    Lattice lattice(fog, {0.2, 1.0}, p);
-    Successor succ[kMaxSuccessors];
-    const Successor* move = SuccessorTo(&lattice, lattice.StateIndex(24, 8, k, Posture::kUpright),
-                                        lattice.StateIndex(24, 9, k, Posture::kUpright), succ);
-    return move != nullptr ? move->cost : -1.0;
+    return StandingMoveCost(fog, {0.2, 1.0}, p, k, 24, 8, 24, 9);
   };
   const double open = walk_cost(world(0.28f, false));
   ASSERT_GT(open, 0);
