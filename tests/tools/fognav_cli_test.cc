@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -131,6 +132,39 @@ TEST(FognavCli, RenderWritesTheViews) {
                            "intrinsics.json", "overview.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
+}
+
+// scripts/random_worlds.py (the rooms of robustness sweeps) writes files that `fognav validate`
+// accepts, the same files for the same seed and other rooms for another; skipped where the
+// machine has no python3 (CI installs only the build's packages)
+TEST(FognavCli, RandomWorldsAreValidScenarios) {
+  if (std::system("python3 --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  const auto tmp = std::filesystem::temp_directory_path();
+  auto generate = [&](const std::string& dir, int seed) {
+    std::filesystem::remove_all(tmp / dir);
+    const std::string command = "python3 scripts/random_worlds.py " + (tmp / dir).string() +
+                                " --count 12 --variants --dense --seed " + std::to_string(seed) +
+                                " > /dev/null";
+    return std::system(command.c_str());
+  };
+  ASSERT_EQ(generate("fognav_rooms_a", 7), 0);
+  ASSERT_EQ(generate("fognav_rooms_b", 7), 0);
+  ASSERT_EQ(generate("fognav_rooms_c", 8), 0);
+  auto read = [](const std::filesystem::path& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  int files = 0, differing = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(tmp / "fognav_rooms_a")) {
+    ++files;
+    const Outcome o = RunFognav("validate " + entry.path().string());
+    EXPECT_EQ(o.exit_code, 0) << entry.path() << ": " << o.output;
+    const auto name = entry.path().filename();
+    EXPECT_EQ(read(entry.path()), read(tmp / "fognav_rooms_b" / name)) << name;
+    differing += read(entry.path()) != read(tmp / "fognav_rooms_c" / name);
+  }
+  EXPECT_EQ(files, 12);
+  EXPECT_EQ(differing, 12);
 }
 
 }  // namespace
