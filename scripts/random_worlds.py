@@ -52,7 +52,8 @@ class Room:
         self.cx = self.length / 2 - 0.5
         half_w = self.width / 2
         self.start = (0.0, round(rng.uniform(-half_w + 0.5, half_w - 0.5), 2), 0.0)
-        self.goal = (round(self.length - 1.0, 2), round(rng.uniform(-half_w + 0.5, half_w - 0.5), 2))
+        self.goal = (round(self.length - 1.0, 2),
+                     round(rng.uniform(-half_w + 0.5, half_w - 0.5), 2))
         self.objects = []
         self.boxes = []  # footprints (x0, y0, x1, y1) taken
         self.sensor = None
@@ -70,8 +71,12 @@ class Room:
         for px, py in (self.start[:2], self.goal):
             if x0 - 0.5 < px < x1 + 0.5 and y0 - 0.5 < py < y1 + 0.5:
                 return False
-        return all(x1 + c <= a0 or a1 + c <= x0 or y1 + c <= b0 or b1 + c <= y0
-                   for a0, b0, a1, b1 in self.boxes)
+        return all(self.apart((x0, y0, x1, y1), box) for box in self.boxes)
+
+    def apart(self, fp, box, across=True):
+        """Whether footprints fp and box are self.clear apart along x (or, if across, y)."""
+        (x0, y0, x1, y1), (a0, b0, a1, b1), c = fp, box, self.clear
+        return x1 + c <= a0 or a1 + c <= x0 or (across and (y1 + c <= b0 or b1 + c <= y0))
 
     def place(self, sx, sy, tries=40):
         half_w = self.width / 2
@@ -137,8 +142,7 @@ class Room:
         gap = round(rng.uniform(0.25, 0.5) if self.dense else rng.uniform(0.3, 0.7), 2)
         gy = round(rng.uniform(-half_w + gap / 2 + 0.2, half_w - gap / 2 - 0.2), 2)
         fp = (x - WALL_T / 2, -half_w, x + WALL_T / 2, half_w)
-        if any(not (fp[2] + self.clear <= a0 or a1 + self.clear <= fp[0])
-               for a0, _, a1, _ in self.boxes):
+        if not all(self.apart(fp, box, across=False) for box in self.boxes):
             return
         self.boxes.append(fp)
         for side, y0, y1 in (("s", -half_w, gy - gap / 2), ("n", gy + gap / 2, half_w)):
@@ -159,10 +163,13 @@ class Room:
 
     def yaml(self, seed):
         L, W, cx = self.length, self.width, self.cx
-        walls = [("wall_n", [cx, W / 2 - WALL_T / 2], [L, WALL_T]),
-                 ("wall_s", [cx, -W / 2 + WALL_T / 2], [L, WALL_T]),
-                 ("wall_w", [cx - L / 2 + WALL_T / 2, 0.0], [WALL_T, W - 2 * WALL_T]),
-                 ("wall_e", [cx + L / 2 - WALL_T / 2, 0.0], [WALL_T, W - 2 * WALL_T])]
+        walls = [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
+                          "size": [round(sx, 3), round(sy, 3), WALL_H]}}
+                 for name, x, y, sx, sy in (
+                     ("wall_n", cx, W / 2 - WALL_T / 2, L, WALL_T),
+                     ("wall_s", cx, -W / 2 + WALL_T / 2, L, WALL_T),
+                     ("wall_w", cx - L / 2 + WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T),
+                     ("wall_e", cx + L / 2 - WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T))]
         lines = [f"name: {self.name}",
                  "description: A random walled room (scripts/random_worlds.py).",
                  f"seed: {seed}",
@@ -172,9 +179,7 @@ class Room:
                  f"  floor: {lst([L, W])}",
                  f"  floor_center: {lst([cx, 0.0])}",
                  "  objects:"]
-        for name, c, s in walls:
-            lines.append(f"    - box: {flow({'name': name, 'center': [round(v, 3) for v in c], 'size': [round(v, 3) for v in s] + [WALL_H]})}")
-        for obj in self.objects:
+        for obj in walls + self.objects:
             (kind, spec), = obj.items()
             lines.append(f"    - {kind}: {flow(spec)}")
         if self.sensor:

@@ -48,8 +48,8 @@ def run_one(fognav, scenario, out_root, perceive):
         return row
     if perceive:
         seg = report.get("segmentation", {})
-        row.update(accuracy=f"{seg.get('accuracy', 0):.4f}", coverage=f"{seg.get('coverage', 0):.4f}",
-                   correct=seg.get("correct", ""), surfaces=seg.get("truth_surfaces", ""),
+        row.update(accuracy=f"{seg.get('accuracy', 0):.4f}",
+                   coverage=f"{seg.get('coverage', 0):.4f}", correct=seg.get("correct", ""), surfaces=seg.get("truth_surfaces", ""),
                    fog_accuracy=f"{report.get('fog_accuracy', 0):.4f}",
                    fog_cells=report.get("fog_observed_cells", ""))
     else:

@@ -726,10 +726,8 @@ TEST(Lattice, TurnsInPlaceSweepOnlyLevelFloor) {
 TEST(Lattice, TurnsInPlaceBesideATopsLowSidePayTheEdgeCost) {
   // a 0.28 m top whose low side the map typed border at floor height, a 0.15 m one likewise
   Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.36, 0.36, 0.84, 0.84, CellType::kBorder, 0.0f);  // the ring, then the top
   FillBox(&fog, 0.40, 0.40, 0.80, 0.80, CellType::kFloor, 0.28f);
-  FillBox(&fog, 0.36, 0.36, 0.84, 0.84, CellType::kBorder, 0.0f);
-  FillBox(&fog, 0.40, 0.40, 0.80, 0.80, CellType::kFloor, 0.28f);
-  FillBox(&fog, 1.00, 0.40, 1.20, 0.80, CellType::kFloor, 0.15f);
   FillBox(&fog, 0.96, 0.36, 1.24, 0.84, CellType::kBorder, 0.0f);
   FillBox(&fog, 1.00, 0.40, 1.20, 0.80, CellType::kFloor, 0.15f);
   TurnCounts counts;
