@@ -33,6 +33,9 @@ def run_one(fognav, scenario, out_root, perceive):
     row.update(name=name, optimal="")
     command = [fognav, "perceive", scenario, "--out", out] if perceive else \
         [fognav, "run", scenario, "--out", out, "--quiet"]
+    report_path = os.path.join(out, "perception.json" if perceive else "report.json")
+    if os.path.exists(report_path):
+        os.remove(report_path)  # a run that writes none must not show an earlier sweep's
     try:
         proc = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                               text=True)
@@ -41,7 +44,7 @@ def run_one(fognav, scenario, out_root, perceive):
         return row
     row["exit"] = proc.returncode
     try:
-        with open(os.path.join(out, "perception.json" if perceive else "report.json")) as f:
+        with open(report_path) as f:
             report = json.load(f)
     except (OSError, ValueError):
         row["detail"] = (proc.stderr.strip().splitlines() or ["no report"])[-1][:60]
