@@ -96,6 +96,51 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
   return out;
 }
 
+// FogParams::ceiling_gap: floor cells of unseen headroom between tunnel cells whose ceilings lie
+// within one layer of each other become tunnel under the lower of the two ceilings.
+void FillCeilingGaps(int gap, Fog* fog) {
+  const GridWindow& w = fog->window;
+  const float layer = float(w.resolution) * 1.001f;
+  // the nearest tunnel cell from (ix, iy) along (dx, dy) across floor cells only: its ceiling
+  // and its distance in steps; no ceiling (-infinity) if there is none within `gap` steps
+  struct Hit {
+    float ceiling = kNegInf;
+    int steps = 0;
+  };
+  auto nearest = [&](int ix, int iy, int dx, int dy) {
+    for (int k = 1; k <= gap; ++k) {
+      const int jx = ix + k * dx, jy = iy + k * dy;
+      if (!w.Contains(jx, jy)) break;
+      const size_t j = size_t(w.Index(jx, jy));
+      if (fog->type[j] == CellType::kTunnel) return Hit{fog->ceiling[j], k};
+      if (fog->type[j] != CellType::kFloor) break;
+    }
+    return Hit{};
+  };
+  constexpr int kAxes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+  std::vector<std::pair<size_t, float>> filled;
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      if (fog->type[i] != CellType::kFloor || fog->headroom_seen[i]) continue;
+      for (const auto& a : kAxes) {
+        const Hit h0 = nearest(ix, iy, a[0], a[1]), h1 = nearest(ix, iy, -a[0], -a[1]);
+        // the floor cells between the two tunnel cells: h0.steps + h1.steps - 1
+        if (h0.ceiling != kNegInf && h1.ceiling != kNegInf &&
+            std::abs(h0.ceiling - h1.ceiling) <= layer && h0.steps + h1.steps - 1 <= gap) {
+          filled.emplace_back(i, std::min(h0.ceiling, h1.ceiling));
+          break;
+        }
+      }
+    }
+  }
+  // the heights stay the floor's (eq. 25)
+  for (const auto& [i, c] : filled) {
+    fog->type[i] = CellType::kTunnel;
+    fog->ceiling[i] = c;
+  }
+}
+
 }  // namespace
 
 Fog ComputeFog(const MapParams& params, const MapState& state) {
@@ -151,6 +196,7 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
     }
   }
   fog.headroom_seen.assign(fog.type.size(), 0);
+  fog.ceiling.assign(fog.type.size(), kNegInf);
   const float h_tunnel = float(params.fog.h_tunnel), h_robot = float(params.fog.h_robot);
 
   for (int iy = 0; iy < w.size_y; ++iy) {
@@ -200,6 +246,7 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       }
       fog.type[i] = t;
       fog.height[i] = internal::FogHeight(t, q);
+      if (t == CellType::kTunnel) fog.ceiling[i] = q.c;
       // headroom: every layer overlapping [f + h_tunnel, f + h_robot) observed and free
       if (std::isfinite(q.f) && t != CellType::kObstacle && t != CellType::kTunnel) {
         const int lo = std::max(0, internal::FastFloor((q.f + h_tunnel - z_min) * inv_res));
@@ -210,6 +257,7 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       }
     }
   }
+  if (params.fog.ceiling_gap > 0) FillCeilingGaps(params.fog.ceiling_gap, &fog);
   if (params.fog.require_known_neighbourhood) {
     // unknown cells (and places beyond the window) in U and in U grown by one cell, counted
     // from a summed-area table of the window padded by `outer` unknown cells on every side

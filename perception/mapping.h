@@ -68,6 +68,10 @@ struct Fog {
   // looked) and none of them is occupied; 0 if not or without a floor. Empty when not known
   // (GroundTruthFog: the geometry is exact); same indexing.
   std::vector<uint8_t> headroom_seen;
+  // Extension: per tunnel cell the height of its ceiling (eq. 23: the bottom of the lowest
+  // occupied layer above the floor), -infinity for other cells. Empty when not known
+  // (GroundTruthFog); same indexing.
+  std::vector<float> ceiling;
 
   Fog() = default;
   explicit Fog(const GridWindow& w)
@@ -247,6 +251,13 @@ struct FogParams {
   // height is too rough to tell stairs) and as before otherwise; the neighbours' floor change
   // sees the drop, and occupied layers count for them as without it.
   bool infer_tops = true;
+  // Extension: an underside seen from below at a grazing angle (a table top just above the
+  // eyes) leaves points in only some of the columns under it, so eq. (23) makes a patchwork of
+  // tunnel cells and floor cells between them. A floor cell whose headroom no ray has seen free
+  // (Fog::headroom_seen) becomes tunnel if tunnel cells lie on both sides of it along a row, a
+  // column or a diagonal within this many cells, their ceilings within one layer of each other:
+  // one slab spans the gap. 0 turns it off (the paper).
+  int ceiling_gap = 3;
   // Floor candidates no higher than this (the standing camera height) and at least a sole
   // large (LabelParams' sizes); GroundTruthFog's floor candidates and infer_tops.
   double camera_height = 0.50;

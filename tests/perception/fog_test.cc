@@ -482,5 +482,89 @@ TEST(Fog, HeadroomIsSeenWhereRaysCrossedEveryLayerAboveTheFloor) {
   EXPECT_EQ(seen(-1.0, -1.0), 0);  // never observed
 }
 
+// FogParams::ceiling_gap: an underside seen in some columns only (a grazing view of a table top)
+// makes tunnel cells with floor cells between them. The floor cells of a gap of at most
+// ceiling_gap cells between ceilings of one layer become tunnel, unless rays have seen their
+// headroom free; a wider gap, or one between ceilings of different layers, stays floor.
+TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
+  auto perceive = [](const MapParams& params, bool headroom_seen_over_gap) {
+    MapState state;
+    MapInput in;
+    in.p_GC = Eigen::Vector3d(0.0, 0.0, 0.56);
+    for (double x = 0.805; x < 1.8; x += 0.01) {
+      for (double y = -0.055; y < 0.06; y += 0.01) {
+        in.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
+      }
+    }
+    // undersides over the cells x in [0.80, 0.84) and [0.92, 0.96) (a gap of two cells),
+    // [1.20, 1.24) and [1.40, 1.44) (four cells), all at 0.48 m; [1.60, 1.64) at 0.36 m and
+    // [1.72, 1.76) at 0.52 m (two cells between ceilings four layers apart)
+    const std::vector<std::pair<double, float>> undersides = {
+        {0.80, 0.48f}, {0.92, 0.48f}, {1.20, 0.48f}, {1.40, 0.48f}, {1.60, 0.36f}, {1.72, 0.52f}};
+    for (const auto& [x0, z] : undersides) {
+      for (double x = x0 + 0.005; x < x0 + 0.04; x += 0.01) {
+        for (double y = -0.055; y < 0.06; y += 0.01) {
+          in.points.push_back({Eigen::Vector3f(float(x), float(y), z)});
+        }
+      }
+    }
+    for (int k = 0; k < 2; ++k) UpdateMaps(params, in, &state);
+    if (headroom_seen_over_gap) {
+      // seen from straight above the gap: rays cross its columns from 0.62 m down
+      MapInput above;
+      above.p_GC = Eigen::Vector3d(0.88, 0.0, 0.62);
+      for (double x = 0.845; x < 0.92; x += 0.01) {
+        for (double y = -0.035; y < 0.04; y += 0.01) {
+          above.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
+        }
+      }
+      for (int k = 0; k < 2; ++k) UpdateMaps(params, above, &state);
+    }
+    return ComputeFog(params, state);
+  };
+  auto seen = [](const Fog& fog, double x, double y) {
+    int ix, iy;
+    fog.window.CellOf(x, y, &ix, &iy);
+    return fog.headroom_seen[size_t(fog.window.Index(ix, iy))];
+  };
+  MapParams params;
+  const Fog fog = perceive(params, false);
+  for (double x : {0.82, 0.94, 1.22, 1.42, 1.62, 1.74}) {
+    EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kTunnel) << x;
+  }
+  auto ceiling = [](const Fog& fog, double x, double y) {
+    int ix, iy;
+    fog.window.CellOf(x, y, &ix, &iy);
+    return fog.ceiling[size_t(fog.window.Index(ix, iy))];
+  };
+  for (double x : {0.86, 0.90}) {
+    EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kTunnel) << x;
+    EXPECT_NEAR(HeightAt(fog, x, 0.0), 0.0, 1e-5) << x;  // the floor's height, as eq. (25)
+    // the ceiling of the cells beside: the bottom of the layer [0.46, 0.50) holding 0.48 m
+    EXPECT_NEAR(ceiling(fog, x, 0.0), 0.46, 1e-5) << x;
+  }
+  EXPECT_NEAR(ceiling(fog, 1.62, 0.0), 0.34, 1e-5);
+  EXPECT_NEAR(ceiling(fog, 1.74, 0.0), 0.50, 1e-5);
+  EXPECT_EQ(ceiling(fog, 1.66, 0.0), kNegInf);
+  for (double x : {1.26, 1.30, 1.34, 1.38, 1.66, 1.70}) {
+    EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kFloor) << x;
+  }
+  // the paper: the gap is floor
+  MapParams paper;
+  paper.fog.ceiling_gap = 0;
+  const Fog plain = perceive(paper, false);
+  for (double x : {0.86, 0.90}) {
+    EXPECT_EQ(TypeAt(plain, x, 0.0), CellType::kFloor) << x;
+    EXPECT_EQ(seen(plain, x, 0.0), 0) << x;
+  }
+  // headroom seen free over the gap: floor
+  const Fog looked = perceive(params, true);
+  for (double x : {0.86, 0.90}) {
+    EXPECT_EQ(seen(looked, x, 0.0), 1) << x;
+    EXPECT_EQ(TypeAt(looked, x, 0.0), CellType::kFloor) << x;
+  }
+  EXPECT_EQ(TypeAt(looked, 0.94, 0.0), CellType::kTunnel);
+}
+
 }  // namespace
 }  // namespace fognav::perception
