@@ -86,6 +86,23 @@ struct ExecutionLimits {
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
+  // A ceiling at least this high above the floor (Fog::ceiling; the standing eyes are at
+  // 0.47-0.51 m) within high_ceiling_range of the robot is one that the standing eyes see only
+  // edge-on or from below, and the cycle's views, which look down, not at all.
+  double high_ceiling = 0.46;
+  double high_ceiling_range = 1.0;
+  // Before getting down to crawl under such a ceiling, the standing eyes look up this far above
+  // the horizon (rad) toward the crawl (the plan's pose look_ahead on) and side_look_pan to
+  // each side. An underside a few centimetres above the eyes (the course's table top) is seen
+  // only so: the views while crawling reach 0.3 rad above the horizon at most (the neck's
+  // limit in the crawl posture), and without it the map held the floor under the top as open
+  // behind its front edge.
+  double underside_elevation = 0.15;
+  double look_ahead = 0.5;
+  // Standing near such a ceiling, every other cycle's view looks level toward the plan's pose
+  // look_ahead on: the edges of a table top at the height of the eyes show only in such views,
+  // and the robot walked under a top whose far edges it had never seen (head collisions).
+  bool level_views = true;
   // the robot keeps to its plan while the rest of it costs at most this much more than a new
   // plan (metres-equivalent, and as a share of the new plan's cost, whichever is more), so two
   // nearly equal ways round an obstacle, or a goal at the map window's edge, do not take turns
@@ -131,10 +148,48 @@ struct StepEdge {
 // head views of the cycles while moving: ahead and to both sides of the path, near and far
 const std::vector<sim::HeadAngles> kCycleViews = {
     {0.0, 0.75}, {0.45, 0.6}, {0.0, 0.4}, {-0.45, 0.6}, {0.0, 0.15}};
-// while crawling: the camera's elevation above the horizon (rad; the neck tilts within what
-// keeps the head below a 0.30 m ceiling), up to see an underside
-// overhead, down to see the floor ahead
-const std::vector<double> kCrawlElevations = {0.15, -0.6};
+// while crawling: the camera's elevation above the horizon (rad), up to see an underside
+// overhead (0.3 is about the neck's limit in the crawl posture; the head's top is then at
+// 0.30 m, the lowest ceiling of a tunnel), down to see the floor ahead
+const std::vector<double> kCrawlElevations = {0.3, -0.6};
+
+// Whether a tunnel cell within `range` of `at` has its ceiling at least `height` above floor_z.
+bool HighCeilingNear(const perception::Fog& fog, const perception::Pose2& at, double floor_z,
+                     double range, double height) {
+  const perception::GridWindow& w = fog.window;
+  if (fog.ceiling.size() != fog.type.size()) return false;
+  int ix0, iy0, ix1, iy1;
+  w.CellOf(at.x - range, at.y - range, &ix0, &iy0);
+  w.CellOf(at.x + range, at.y + range, &ix1, &iy1);
+  for (int iy = std::max(0, iy0); iy <= std::min(w.size_y - 1, iy1); ++iy) {
+    for (int ix = std::max(0, ix0); ix <= std::min(w.size_x - 1, ix1); ++ix) {
+      const size_t i = size_t(w.Index(ix, iy));
+      const Eigen::Vector2d c = w.CellCenter(ix, iy);
+      if (fog.type[i] == perception::CellType::kTunnel && fog.ceiling[i] - floor_z >= height &&
+          std::hypot(c.x() - at.x, c.y() - at.y) <= range) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The pan (relative to `from`'s heading) toward the first pose of path[first..] that lies
+// `ahead` or farther from `from`, among those that `take` accepts (up to the first it rejects);
+// the last accepted pose if none lies so far, 0 if none is accepted.
+template <typename Take>
+double PanToward(const nav::PlanResult& plan, size_t first, const perception::Pose2& from,
+                 double ahead, Take take) {
+  double pan = 0;
+  for (size_t k = first; k < plan.path.size() && take(plan.path[k]); ++k) {
+    const perception::Pose2& q = plan.path[k].pose_G;
+    const double d = std::hypot(q.x - from.x, q.y - from.y);
+    if (d < 0.01) continue;
+    pan = WrapAngle(std::atan2(q.y - from.y, q.x - from.x) - from.yaw);
+    if (d >= ahead) break;
+  }
+  return pan;
+}
 
 // The floor under the standing robot is known without looking: it stands on it. The body hides
 // it from the eyes, so where the robot came by a way it did not look at, unknown cells lay
@@ -385,6 +440,25 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
     const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
     return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
+  };
+
+  // Before getting down for the plan's crawl from path[first]: the standing eyes look up
+  // (ExecutionLimits::underside_elevation) toward the crawl's pose look_ahead on (or its last)
+  // and to both sides of it.
+  auto look_up_before_crawling = [&](const nav::PlanResult& p, size_t first,
+                                     const perception::Pose2& from) {
+    const double toward =
+        PanToward(p, first + 1, from, limits.look_ahead,
+                  [](const nav::PathPose& q) { return q.posture == nav::Posture::kCrawling; });
+    const std::string move = current_move;
+    current_move = "look";
+    const double side = limits.side_look_pan;
+    for (const double pan : {toward, toward + side, toward - side}) {
+      controller.MoveHead(head_at_elevation(pan, limits.underside_elevation));
+      run_controller();
+      perceive();
+    }
+    current_move = move;
   };
 
   auto true_goal_distance = [&]() {
@@ -777,6 +851,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
       case nav::Move::kCrawl:
         if (run.posture == nav::Posture::kCrawling && controller.mode() == sim::Mode::kStanding) {
+          if (HighCeilingNear(fog, believed, believed_floor_z, limits.high_ceiling_range,
+                              limits.high_ceiling)) {
+            look_up_before_crawling(plan, size_t(run.first), believed);
+          }
           controller.GetDown();
         } else if (run.posture == nav::Posture::kUpright &&
                    controller.mode() == sim::Mode::kCrawling) {
@@ -832,7 +910,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (controller.mode() == sim::Mode::kCrawling) {
       controller.MoveHead(crawl_view(0.0, kCrawlElevations[size_t(cycle) % kCrawlElevations.size()]));
     } else {
-      controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
+      const perception::Pose2 at = ToPerception(controller.believed_pose());
+      if (limits.level_views && cycle % 2 == 0 &&
+          HighCeilingNear(fog, at, believed_floor_z, limits.high_ceiling_range,
+                          limits.high_ceiling)) {
+        const double pan = PanToward(plan, size_t(target), at, limits.look_ahead,
+                                     [](const nav::PathPose&) { return true; });
+        controller.MoveHead(head_at_elevation(pan, 0.0));
+      } else {
+        controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
+      }
     }
     run_controller();
     perceive();
