@@ -70,7 +70,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "drop_off", "enclosed", "slalom", "turn_first", "noisy_odometry",
                       "goal_at_wall", "noisy_gap", "wall_ahead", "course_shifted", "turned_stairs",
                       "thick_table", "long_wall", "table_in_divider", "doorway", "divider_opening",
-                      "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted"));
+                      "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted",
+                      "eye_level_table"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
