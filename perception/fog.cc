@@ -117,10 +117,18 @@ void FillCeilingGaps(int gap, Fog* fog) {
     }
     return Hit{};
   };
-  constexpr int kAxes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
-  std::vector<std::pair<size_t, float>> filled;
+  // a cell between two tunnel cells lies inside their bounding box
+  int x0 = w.size_x, y0 = w.size_y, x1 = -1, y1 = -1;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
+      if (fog->type[size_t(w.Index(ix, iy))] != CellType::kTunnel) continue;
+      x0 = std::min(x0, ix), x1 = std::max(x1, ix), y0 = std::min(y0, iy), y1 = std::max(y1, iy);
+    }
+  }
+  constexpr int kAxes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+  std::vector<std::pair<size_t, float>> filled;
+  for (int iy = y0; iy <= y1; ++iy) {
+    for (int ix = x0; ix <= x1; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
       if (fog->type[i] != CellType::kFloor || fog->headroom_seen[i]) continue;
       for (const auto& a : kAxes) {
