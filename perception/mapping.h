@@ -255,8 +255,8 @@ struct FogParams {
   // eyes) leaves points in only some of the columns under it, so eq. (23) makes a patchwork of
   // tunnel cells and floor cells between them. A floor cell whose headroom no ray has seen free
   // (Fog::headroom_seen) becomes tunnel if tunnel cells lie on both sides of it along a row, a
-  // column or a diagonal within this many cells, their ceilings within one layer of each other:
-  // one slab spans the gap. 0 turns it off (the paper).
+  // column or a diagonal with at most this many floor cells between them, their ceilings within
+  // one layer of each other: one slab spans the gap. 0 turns it off (the paper).
   int ceiling_gap = 3;
   // Floor candidates no higher than this (the standing camera height) and at least a sole
   // large (LabelParams' sizes); GroundTruthFog's floor candidates and infer_tops.

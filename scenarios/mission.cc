@@ -164,11 +164,11 @@ bool HighCeilingNear(const perception::Fog& fog, const perception::Pose2& at, do
   for (int iy = std::max(0, iy0); iy <= std::min(w.size_y - 1, iy1); ++iy) {
     for (int ix = std::max(0, ix0); ix <= std::min(w.size_x - 1, ix1); ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
-      const Eigen::Vector2d c = w.CellCenter(ix, iy);
-      if (fog.type[i] == perception::CellType::kTunnel && fog.ceiling[i] - floor_z >= height &&
-          std::hypot(c.x() - at.x, c.y() - at.y) <= range) {
-        return true;
+      if (fog.type[i] != perception::CellType::kTunnel || fog.ceiling[i] - floor_z < height) {
+        continue;
       }
+      const Eigen::Vector2d c = w.CellCenter(ix, iy);
+      if (std::hypot(c.x() - at.x, c.y() - at.y) <= range) return true;
     }
   }
   return false;
