@@ -101,7 +101,9 @@ struct ExecutionLimits {
   double look_ahead = 0.5;
   // Standing near such a ceiling, every other cycle's view looks level toward the plan's pose
   // look_ahead on: the edges of a table top at the height of the eyes show only in such views,
-  // and the robot walked under a top whose far edges it had never seen (head collisions).
+  // and the robot walked under a top whose far edges it had never seen (head collisions). Not
+  // while the plan's poses within look_ahead lie on unknown cells: a level view sees the floor
+  // only from 1.5 m on, and the robot walked into a 9 cm block it had not looked at.
   bool level_views = true;
   // the robot keeps to its plan while the rest of it costs at most this much more than a new
   // plan (metres-equivalent, and as a share of the new plan's cost, whichever is more), so two
@@ -169,6 +171,22 @@ bool HighCeilingNear(const perception::Fog& fog, const perception::Pose2& at, do
       }
       const Eigen::Vector2d c = w.CellCenter(ix, iy);
       if (std::hypot(c.x() - at.x, c.y() - at.y) <= range) return true;
+    }
+  }
+  return false;
+}
+
+// Whether a pose of path[first..] within `range` of `at` (up to the first beyond it) lies on an
+// unknown cell or outside the window.
+bool UnknownAhead(const perception::Fog& fog, const nav::PlanResult& plan, size_t first,
+                  const perception::Pose2& at, double range) {
+  for (size_t k = first; k < plan.path.size(); ++k) {
+    const perception::Pose2& q = plan.path[k].pose_G;
+    if (std::hypot(q.x - at.x, q.y - at.y) > range) break;
+    int ix, iy;
+    fog.window.CellOf(q.x, q.y, &ix, &iy);
+    if (!fog.window.Contains(ix, iy) || fog.TypeAt(ix, iy) == perception::CellType::kUnknown) {
+      return true;
     }
   }
   return false;
@@ -912,6 +930,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     } else {
       const perception::Pose2 at = ToPerception(controller.believed_pose());
       if (limits.level_views && cycle % 2 == 0 &&
+          !UnknownAhead(fog, plan, size_t(target), at, limits.look_ahead) &&
           HighCeilingNear(fog, at, believed_floor_z, limits.high_ceiling_range,
                           limits.high_ceiling)) {
         const double pan = PanToward(plan, size_t(target), at, limits.look_ahead,
