@@ -441,13 +441,15 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const perception::Pose2& localized = last_view.robot_G;
     controller.CorrectBelievedPose({localized.x, localized.y, localized.yaw});
   };
+  // turns the head to `view` and perceives
+  auto look = [&](const sim::HeadAngles& view) {
+    controller.MoveHead(view);
+    run_controller();
+    perceive();
+  };
   auto look_around = [&]() {
     current_move = "look";
-    for (const sim::HeadAngles& view : StartSweep()) {
-      controller.MoveHead(view);
-      run_controller();
-      perceive();
-    }
+    for (const sim::HeadAngles& view : StartSweep()) look(view);
   };
 
   // the neck angles that give the camera the wanted pan and elevation above the horizon, from
@@ -472,9 +474,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     current_move = "look";
     const double side = limits.side_look_pan;
     for (const double pan : {toward, toward + side, toward - side}) {
-      controller.MoveHead(head_at_elevation(pan, limits.underside_elevation));
-      run_controller();
-      perceive();
+      look(head_at_elevation(pan, limits.underside_elevation));
     }
     current_move = move;
   };
@@ -568,9 +568,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const Eigen::Vector3d camera_R = sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).translation();
     const double below = camera_R.z() + believed_floor_z - std::max(pre.floor_z, post.floor_z);
     const double run_out = std::hypot(to.x() - camera_R.x(), to.y() - camera_R.y());
-    controller.MoveHead(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(below, run_out)));
-    run_controller();
-    perceive();
+    look(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(below, run_out)));
     from_view(first_step);
   };
 
@@ -924,24 +922,19 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     run_controller();
 
     // look where the robot is going, then perceive
-    const auto& crawl_view = head_at_elevation;
+    const perception::Pose2 at = ToPerception(controller.believed_pose());
     if (controller.mode() == sim::Mode::kCrawling) {
-      controller.MoveHead(crawl_view(0.0, kCrawlElevations[size_t(cycle) % kCrawlElevations.size()]));
+      look(head_at_elevation(0.0, kCrawlElevations[size_t(cycle) % kCrawlElevations.size()]));
+    } else if (limits.level_views && cycle % 2 == 0 &&
+               !UnknownAhead(fog, plan, size_t(target), at, limits.look_ahead) &&
+               HighCeilingNear(fog, at, believed_floor_z, limits.high_ceiling_range,
+                               limits.high_ceiling)) {
+      look(head_at_elevation(PanToward(plan, size_t(target), at, limits.look_ahead,
+                                       [](const nav::PathPose&) { return true; }),
+                             0.0));
     } else {
-      const perception::Pose2 at = ToPerception(controller.believed_pose());
-      if (limits.level_views && cycle % 2 == 0 &&
-          !UnknownAhead(fog, plan, size_t(target), at, limits.look_ahead) &&
-          HighCeilingNear(fog, at, believed_floor_z, limits.high_ceiling_range,
-                          limits.high_ceiling)) {
-        const double pan = PanToward(plan, size_t(target), at, limits.look_ahead,
-                                     [](const nav::PathPose&) { return true; });
-        controller.MoveHead(head_at_elevation(pan, 0.0));
-      } else {
-        controller.MoveHead(kCycleViews[size_t(cycle) % kCycleViews.size()]);
-      }
+      look(kCycleViews[size_t(cycle) % kCycleViews.size()]);
     }
-    run_controller();
-    perceive();
     just_looked = false;
     measure_edges();
 
@@ -950,9 +943,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (controller.mode() == sim::Mode::kCrawling &&
         std::sqrt(localization.PoseCovariance()(2, 2)) > limits.lost_yaw) {
       for (const double pan : {limits.side_look_pan, -limits.side_look_pan}) {
-        controller.MoveHead(crawl_view(pan, 0.0));
-        run_controller();
-        perceive();
+        look(head_at_elevation(pan, 0.0));
       }
     }
 
