@@ -122,6 +122,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "course.yaml:11: world.objects[1].stairs.steps[1]: expected a positive depth"},
         BadInput{"floor: [6.0, 2.0]", "floor: [6.0, 0.0]",
                  "course.yaml:7: world.floor: expected 2 positive sizes"},
+        // sizes and places the maps cannot hold (a 1e9 m floor aborted the ground-truth plan)
+        BadInput{"floor: [6.0, 2.0]", "floor: [6.0, 31.0]",
+                 "course.yaml:7: world.floor: expected sides of at most 30 m"},
+        BadInput{"floor_center: [2.0, 0.0]", "floor_center: [2.0, 1e9]",
+                 "course.yaml:8: world.floor_center[1]: expected a number within +-1000, got 1e9"},
         // goal and start off the floor
         BadInput{"position: [3.0, 0.0]", "position: [9.0, 0.0]",
                  "course.yaml:5: goal.position: the goal is off the floor"},
