@@ -113,7 +113,7 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario_path, "scenario YAML file")->required();
   run->add_option("--out", out_dir, "output directory")->required();
   run->add_option("--dump-every", dump_every, "write frames and maps every N cycles")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1000000000));
   run->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
       ->check(CLI::IsMember({"stereo", "ideal"}));
   run->add_option("--video", video,

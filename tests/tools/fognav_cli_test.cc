@@ -100,6 +100,10 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
   EXPECT_EQ(RunFognav("clip moonwalk --out /tmp/x").exit_code, 2);
   EXPECT_EQ(RunFognav("clip walk --out /tmp/x --every 0").exit_code, 2);
   EXPECT_EQ(RunFognav("perceive scenarios/stairs_and_table.yaml --out /tmp/x --depth lidar").exit_code, 2);
+  Outcome dump = RunFognav("run scenarios/obstacles.yaml --out /tmp/x --dump-every -3");
+  EXPECT_EQ(dump.exit_code, 2);
+  EXPECT_NE(dump.output.find("--dump-every: Value -3 not in range 0 to 1000000000"),
+            std::string::npos) << dump.output;
   // a video format it cannot write is refused before the mission runs
   Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_video --video /tmp/v.gif");
   EXPECT_EQ(o.exit_code, 2);
