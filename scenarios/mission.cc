@@ -64,12 +64,13 @@ struct ExecutionLimits {
   // where noise closed the way to the goal the robot would go back and forth until it timed out
   int max_explorations = 4;
   int explore_patience = 5;  // cycles
-  // Still without a way, the robot plans as if the obstacle and tunnel cells whose obstacle
-  // evidence was seen only from farther than inspect_range (MapState::obstacle_range) were
-  // unknown: stereo errors grow with the square of the range, and a phantom seen from afar can
-  // close a door. If the real map stops that plan, the robot goes (exploring, at most
-  // max_explorations times in all) to within inspect_reach of the last pose before the stop,
-  // where near views overrule the far evidence (OccupancyParams::overrule_ratio) or confirm it.
+  // Still without a way, the robot plans as if the obstacle and tunnel cells, and the rims of
+  // raised tops, whose obstacle evidence was seen only from farther than inspect_range
+  // (MapState::obstacle_range) were unknown: stereo errors grow with the square of the range,
+  // and a phantom seen from afar can close a door. If the real map stops that plan, the robot
+  // goes (exploring, at most max_explorations times in all) to within inspect_reach of the last
+  // pose before the stop, where near views overrule the far evidence
+  // (OccupancyParams::overrule_ratio) or confirm it.
   // When that finds no way, the same with inspect_near_range: at 1.5 m a 1-pixel error of a
   // partition's end beside a failed match puts a phantom 0.2 m into a door, at 1 m 0.1 m (7 of
   // 8 doorways shifted by 1-3 cm went through with it, none without; 131 runs lost none).
@@ -270,8 +271,9 @@ nav::PlanResult PlanToGoal(const perception::Fog& fog, const perception::Pose2& 
 }
 
 // Where to look from at obstacle evidence seen only from farther than `range`
-// (ExecutionLimits::inspect_range): the map with those cells unknown may have a way on; the
-// robot looks from the last pose of that way before the real map stops it. Left as they are:
+// (ExecutionLimits::inspect_range), in obstacle and tunnel cells and on the rims of raised
+// tops: the map with those cells unknown may have a way on; the robot looks from the last pose
+// of that way before the real map stops it. Left as they are:
 // cells within the body's reach of where the robot stands (it has looked from here; they lie
 // where its eyes do not reach, behind a low wall it stands at) and cells beside obstacle
 // evidence seen from nearer (the hidden inside of a wall whose face was seen from nearby; no
@@ -297,12 +299,31 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
       std::max(0.5 * params.shoulder_width, params.crawl_offset + 0.5 * params.crawl_length) +
       params.margin;
   const Eigen::Vector2d here(believed.x, believed.y);
+  // the rim of a raised top: a floor or border cell more than h_stairs above a 4-neighbour's
+  // floor (a top seen from afar may reach a cell too far, and two such rims close a narrow way)
+  const float h_stairs = float(params.h_stairs);
+  auto known_floor = [&](int jx, int jy, float* h) {
+    if (!w.Contains(jx, jy)) return false;
+    const perception::CellType t = fog.TypeAt(jx, jy);
+    *h = fog.HeightAt(jx, jy);
+    return (t == perception::CellType::kFloor || t == perception::CellType::kBorder ||
+            t == perception::CellType::kStairs) && std::isfinite(*h);
+  };
+  auto top_rim = [&](int ix, int iy) {
+    float h = 0, g = 0;
+    if (!known_floor(ix, iy, &h)) return false;
+    const int nx[4] = {ix + 1, ix - 1, ix, ix}, ny[4] = {iy, iy, iy + 1, iy - 1};
+    for (int k = 0; k < 4; ++k) {
+      if (known_floor(nx[k], ny[k], &g) && g < h - h_stairs) return true;
+    }
+    return false;
+  };
   perception::Fog hopeful = fog;
   int suspects = 0;
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
-      if (!solid(ix, iy) || !(maps.obstacle_range[i] > range) ||
+      if (!(solid(ix, iy) || top_rim(ix, iy)) || !(maps.obstacle_range[i] > range) ||
           (w.CellCenter(ix, iy) - here).norm() <= reach || seen_near(ix - 1, iy) ||
           seen_near(ix + 1, iy) || seen_near(ix, iy - 1) || seen_near(ix, iy + 1)) {
         continue;

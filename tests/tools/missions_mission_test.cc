@@ -74,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(
                       "goal_at_wall", "noisy_gap", "wall_ahead", "course_shifted", "turned_stairs",
                       "thick_table", "long_wall", "table_in_divider", "doorway", "divider_opening",
                       "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted",
-                      "eye_level_table"));
+                      "eye_level_table", "tables_by_the_wall"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
