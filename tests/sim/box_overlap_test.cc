@@ -1,11 +1,14 @@
 // Separating-axis penetration of two boxes, and the MuJoCo 2.2 box-box contact it checks.
 #include "sim/internal/box_overlap.h"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "sim/controller.h"
 #include "sim/model.h"
 
 namespace fognav::sim {
@@ -55,8 +58,8 @@ TEST(BoxPenetration, EdgeToEdgeUsesTheCrossAxes) {
 
 // MuJoCo 2.2.2's box-box collider reports a contact 0.48 m deep for a sole resting flush on
 // a tread (the poses of a mission's sole and tread, to the last bit: 3 micrometres of overlap;
-// google-deepmind/mujoco#3476 reports the same kind of phantom in MuJoCo 3.10). The separating axes
-// say 3 micrometres; Controller::CheckContacts takes the smaller of the two.
+// google-deepmind/mujoco#3476 reports the same kind of phantom in MuJoCo 3.10). The separating
+// axes say 3 micrometres; Controller::CheckContacts takes the smaller of the two, no collision.
 TEST(BoxPenetration, ReadsAFlushSoleOnATreadAsShallowWhereMujocoDoesNot) {
   const Eigen::Vector3d sole_center(1.3120717840719736, -0.21188903074534129, 0.079997102022170988);
   Eigen::Matrix3d sole_axes;  // row-major, as MuJoCo's geom_xmat
@@ -87,9 +90,10 @@ TEST(BoxPenetration, ReadsAFlushSoleOnATreadAsShallowWhereMujocoDoesNot) {
   sole.axes = sole_axes;
   const double separating = BoxPenetration(MakeBox({1.3, -0.26, 0.035}, {0.2, 0.43, 0.035}), sole);
   EXPECT_NEAR(separating, 0.070 - (sole_center.z() - 0.01), 1e-9);
-  EXPECT_LT(separating, 1e-5);
-  // what MuJoCo reports (should a later MuJoCo fix it, the check in the controller is spare)
-  EXPECT_GT(deepest, 0.1) << "MuJoCo's box-box contact is no longer phantom";
+  // MuJoCo's own depth is recorded, not asserted: 0.48 m with Debian 12's libmujoco 2.2.2 on
+  // x86-64, and a MuJoCo that fixes it leaves the rule right
+  RecordProperty("mujoco_depth_m", std::to_string(deepest));
+  EXPECT_LT(std::min(deepest, separating), ControllerParams{}.collision_depth);
 }
 
 }  // namespace
