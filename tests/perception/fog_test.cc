@@ -54,6 +54,19 @@ float HeightAt(const Fog& fog, double x, double y) {
   return fog.HeightAt(ix, iy);
 }
 
+// Fog::headroom_seen and Fog::ceiling of the cell at (x, y)
+int HeadroomSeenAt(const Fog& fog, double x, double y) {
+  int ix, iy;
+  fog.window.CellOf(x, y, &ix, &iy);
+  return fog.headroom_seen[size_t(fog.window.Index(ix, iy))];
+}
+
+float CeilingAt(const Fog& fog, double x, double y) {
+  int ix, iy;
+  fog.window.CellOf(x, y, &ix, &iy);
+  return fog.ceiling[size_t(fog.window.Index(ix, iy))];
+}
+
 OrientedBox Floor() { return AlignedBox(-2, 2, -2, 2, -0.01, 0.0); }
 
 // Cameras at `height` on two rings around a target (radius and 1.7 times it), looking at it.
@@ -468,11 +481,7 @@ TEST(Fog, HeadroomIsSeenWhereRaysCrossedEveryLayerAboveTheFloor) {
   for (int k = 0; k < 2; ++k) UpdateMaps(params, in, &state);
   const Fog fog = ComputeFog(params, state);
   ASSERT_EQ(fog.headroom_seen.size(), fog.type.size());
-  auto seen = [&](double x, double y) {
-    int ix, iy;
-    fog.window.CellOf(x, y, &ix, &iy);
-    return fog.headroom_seen[size_t(fog.window.Index(ix, iy))];
-  };
+  auto seen = [&](double x, double y) { return HeadroomSeenAt(fog, x, y); };
   EXPECT_EQ(TypeAt(fog, 1.0, 0.0), CellType::kFloor);
   EXPECT_EQ(seen(1.0, 0.0), 1);
   EXPECT_EQ(TypeAt(fog, 1.0, 1.0), CellType::kFloor);
@@ -522,30 +531,20 @@ TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
     }
     return ComputeFog(params, state);
   };
-  auto seen = [](const Fog& fog, double x, double y) {
-    int ix, iy;
-    fog.window.CellOf(x, y, &ix, &iy);
-    return fog.headroom_seen[size_t(fog.window.Index(ix, iy))];
-  };
   MapParams params;
   const Fog fog = perceive(params, false);
   for (double x : {0.82, 0.94, 1.22, 1.42, 1.62, 1.74}) {
     EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kTunnel) << x;
   }
-  auto ceiling = [](const Fog& fog, double x, double y) {
-    int ix, iy;
-    fog.window.CellOf(x, y, &ix, &iy);
-    return fog.ceiling[size_t(fog.window.Index(ix, iy))];
-  };
   for (double x : {0.86, 0.90}) {
     EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kTunnel) << x;
     EXPECT_NEAR(HeightAt(fog, x, 0.0), 0.0, 1e-5) << x;  // the floor's height, as eq. (25)
     // the ceiling of the cells beside: the bottom of the layer [0.46, 0.50) holding 0.48 m
-    EXPECT_NEAR(ceiling(fog, x, 0.0), 0.46, 1e-5) << x;
+    EXPECT_NEAR(CeilingAt(fog, x, 0.0), 0.46, 1e-5) << x;
   }
-  EXPECT_NEAR(ceiling(fog, 1.62, 0.0), 0.34, 1e-5);
-  EXPECT_NEAR(ceiling(fog, 1.74, 0.0), 0.50, 1e-5);
-  EXPECT_EQ(ceiling(fog, 1.66, 0.0), kNegInf);
+  EXPECT_NEAR(CeilingAt(fog, 1.62, 0.0), 0.34, 1e-5);
+  EXPECT_NEAR(CeilingAt(fog, 1.74, 0.0), 0.50, 1e-5);
+  EXPECT_EQ(CeilingAt(fog, 1.66, 0.0), kNegInf);
   for (double x : {1.26, 1.30, 1.34, 1.38, 1.66, 1.70}) {
     EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kFloor) << x;
   }
@@ -555,12 +554,12 @@ TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
   const Fog plain = perceive(paper, false);
   for (double x : {0.86, 0.90}) {
     EXPECT_EQ(TypeAt(plain, x, 0.0), CellType::kFloor) << x;
-    EXPECT_EQ(seen(plain, x, 0.0), 0) << x;
+    EXPECT_EQ(HeadroomSeenAt(plain, x, 0.0), 0) << x;
   }
   // headroom seen free over the gap: floor
   const Fog looked = perceive(params, true);
   for (double x : {0.86, 0.90}) {
-    EXPECT_EQ(seen(looked, x, 0.0), 1) << x;
+    EXPECT_EQ(HeadroomSeenAt(looked, x, 0.0), 1) << x;
     EXPECT_EQ(TypeAt(looked, x, 0.0), CellType::kFloor) << x;
   }
   EXPECT_EQ(TypeAt(looked, 0.94, 0.0), CellType::kTunnel);
