@@ -642,7 +642,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::optional<Eigen::Vector2d> explore_to;
   double nearest_to_goal = std::numeric_limits<double>::infinity();  // believed, so far
   int explorations = 0;
-  double explore_best = 0;  // the nearest the robot has been to explore_to
+  double explore_best = 0;  // the distance to explore_to when it last got min_approach nearer
   double explore_reach = 0;  // exploring ends within this distance of explore_to
   bool inspecting = false;   // explore_to is where to look at far obstacle evidence from
   // believed positions of the last cycles (thrash_cycles) and the nearest to the goal so far
@@ -721,11 +721,17 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     // exploring goes on while the map's ways to the goal come and go (they may lead through
     // cells not yet seen), until the robot is within explore_beyond of where it explores to or
-    // has not got nearer to it for explore_patience cycles
+    // has not got min_approach nearer to it for explore_patience cycles (nearer than where it
+    // last did: turns toward it and looks make cycles without a step, and a robot that gains a
+    // few centimetres a cycle is on its way)
     if (explore_to) {
       const double d = (position - *explore_to).norm();
-      explore_stalls = d < explore_best - limits.min_approach ? 0 : explore_stalls + 1;
-      explore_best = std::min(explore_best, d);
+      if (d < explore_best - limits.min_approach) {
+        explore_stalls = 0;
+        explore_best = d;
+      } else {
+        ++explore_stalls;
+      }
       if (d < explore_reach || explore_stalls > limits.explore_patience) {
         explore_to.reset();
         inspecting = false;
