@@ -782,12 +782,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
       // crawling with no way on: beyond a table top as thick as the eyes are high the headroom
       // stays unseen from below, so the robot may get up where the map holds no ceiling, until
-      // it stands again
+      // it stands again; with no way to the goal even so, it gets up where that leads nearer
       if (!nearer && posture == nav::Posture::kCrawling &&
           planner_params.get_up_under_seen_headroom) {
         nav::PlannerParams unseen = planner_params;
         unseen.get_up_under_seen_headroom = false;
         nav::PlanResult up = PlanToGoal(fog, believed, scenario, unseen, posture);
+        if (!moves(up)) {
+          up = nav::PlanToward(fog, believed, scenario.goal, unseen, posture);
+          if (!leads_nearer(up, scenario.goal, here)) up = nav::PlanResult{};
+        }
         if (moves(up)) {
           planner_params = unseen;
           toward = std::move(up);
