@@ -268,9 +268,15 @@ size_t FirstBlockedPose(const perception::Fog& fog, const PlanResult& plan,
   if (plan.status != PlanStatus::kOk || n < 2) return n;
   internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal,
                             /*heuristic=*/false);
-  const size_t end =
-      FollowPath(lattice, fog.window, plan.path, 0, [](size_t, const internal::Successor*, int) {});
-  return end == 0 ? 1 : end;  // a start that is no valid state: the first move cannot be made
+  // a start between the lattice's headings (odometry's yaw after noisy steps) is no lattice
+  // state: the search left it by a seed move, so the check starts at that move's pose
+  int ix = 0, iy = 0, state = 0;
+  fog.window.CellOf(plan.path[0].pose_G.x, plan.path[0].pose_G.y, &ix, &iy);
+  const size_t from =
+      fog.window.Contains(ix, iy) && !StateOfPose(lattice, ix, iy, plan.path[0], &state) ? 1 : 0;
+  const size_t end = FollowPath(lattice, fog.window, plan.path, from,
+                                [](size_t, const internal::Successor*, int) {});
+  return std::max<size_t>(end, 1);  // a first pose that is no valid state: its move cannot be made
 }
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,

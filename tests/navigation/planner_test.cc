@@ -1235,5 +1235,31 @@ TEST(Planner, FindsWhereAMapStopsAPlan) {
   EXPECT_EQ(FirstBlockedPose(blocked, PlanResult{}, course.goal_G, p), 0u);
 }
 
+// Odometry's yaw after noisy steps lies between the lattice's headings: the plan leaves that
+// start by a seed move, and the check starts at its pose. Before, such a start made every plan
+// blocked at its first pose, so the robot never went to look at far obstacle evidence.
+TEST(Planner, FindsWhereAMapStopsAPlanFromAStartBetweenHeadings) {
+  internal::Course course = internal::PaperCourse();
+  const PlannerParams p;
+  Pose2 start = course.start_G;
+  start.yaw += 0.007;  // 0.4 degrees
+  const PlanResult plan = Plan(course.fog, start, course.goal_G, p);
+  ASSERT_EQ(plan.status, PlanStatus::kOk);
+  ASSERT_GT(plan.path.size(), 40u);
+  EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
+  const size_t k = plan.path.size() / 2;
+  const Pose2 q = plan.path[k].pose_G;
+  Fog blocked = course.fog;
+  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
+  EXPECT_LE(first, k);
+  EXPECT_GT(first, k - 10);
+  // a start whose footprint an obstacle covers still cannot make its first move
+  Fog covered = course.fog;
+  FillBox(&covered, start.x - 0.05, start.y - 0.05, start.x + 0.05, start.y + 0.05,
+          CellType::kObstacle, 0.2f);
+  EXPECT_EQ(FirstBlockedPose(covered, plan, course.goal_G, p), 1u);
+}
+
 }  // namespace
 }  // namespace fognav::navigation
