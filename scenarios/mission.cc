@@ -76,10 +76,16 @@ struct ExecutionLimits {
   // 8 doorways shifted by 1-3 cm went through with it, none without; 131 runs lost none).
   // Or it goes (as above) to look into the unseen cells a side-step or backward step of a way
   // needs (PeekPose), where that is the cheaper way to go: a gap only a side-step passes stays
-  // closed while the floor behind it is hidden.
+  // closed while the floor behind it is hidden. It goes to within peek_reach of that pose: a
+  // few centimetres aside, a wall's end hides the floor behind the gap.
   double inspect_range = 1.5;
   double inspect_near_range = 1.0;
   double inspect_reach = 0.25;
+  double peek_reach = 0.05;
+  // There, after looking around, the eyes look at the floor this far beyond the pose the blind
+  // move goes to (the sole's front half, with a cell to spare), whatever the pan: the sweep
+  // pans to 1.2 rad, and a side-step's floor lies at 1.6 rad or more.
+  double peek_lead = 0.1;
   // a robot whose last thrash_cycles positions all lie within thrash_radius of the first of
   // them, on plans that do not reach the goal, and that got no nearer to the goal than before
   // them (min_approach), goes back and forth (plans toward a goal beyond the window change as
@@ -349,12 +355,15 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
 // side-step or back into cells its eyes have not seen (PlannerParams::blind_moves_stay_known),
 // so a gap that only a side-step passes stays closed while the floor behind it is hidden (a
 // 0.25 m gap in a divider the robot came to at an angle). The map with blind moves allowed may
-// have a way on; the robot looks from the last pose of that way before its first blind move.
+// have a way on; the robot looks from the last pose of that way before its first blind move,
+// at `lead` beyond the pose that move goes to (where the footprint's leading edge comes).
 // Nothing if there is no such way or it stays where it is.
-std::optional<Eigen::Vector2d> PeekPose(const perception::Fog& fog,
-                                        const perception::Pose2& believed,
-                                        const Scenario& scenario, const nav::PlannerParams& params,
-                                        nav::Posture posture, double min_approach) {
+struct Peek {
+  Eigen::Vector2d from, at;
+};
+std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2& believed,
+                             const Scenario& scenario, const nav::PlannerParams& params,
+                             nav::Posture posture, double min_approach, double lead) {
   if (!params.blind_moves_stay_known) return std::nullopt;
   nav::PlannerParams blind = params;
   blind.blind_moves_stay_known = false;
@@ -382,7 +391,10 @@ std::optional<Eigen::Vector2d> PeekPose(const perception::Fog& fog,
   const size_t k = nav::FirstBlockedPose(fog, plan, scenario.goal, params);
   if (k >= plan.path.size()) return std::nullopt;
   const perception::Pose2& before = plan.path[k - 1].pose_G;
-  return Eigen::Vector2d(before.x, before.y);
+  const perception::Pose2& blind_to = plan.path[k].pose_G;
+  const Eigen::Vector2d from(before.x, before.y), to(blind_to.x, blind_to.y);
+  const Eigen::Vector2d step = to - from;
+  return Peek{from, step.norm() > 1e-9 ? Eigen::Vector2d(to + step.normalized() * lead) : to};
 }
 
 }  // namespace
@@ -524,6 +536,17 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     const double elevation = std::asin(std::clamp(forward_R.z(), -1.0, 1.0));
     const double tilt = d->qpos[humanoid.joint_qpos(sim::kNeckTilt)];
     return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
+  };
+
+  // a look at the floor around `target` (on the robot's level), the head panned toward it as
+  // far as the neck turns
+  auto look_at_floor = [&](const Eigen::Vector2d& target) {
+    const Eigen::Vector3d to =
+        Relative(ToPerception(controller.believed_pose()), {target.x(), target.y(), 0});
+    const Eigen::Vector3d camera_R = sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).translation();
+    const double run_out = std::hypot(to.x() - camera_R.x(), to.y() - camera_R.y());
+    current_move = "look";
+    look(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(camera_R.z(), run_out)));
   };
 
   // Before getting down for the plan's crawl from path[first]: the standing eyes look up
@@ -688,6 +711,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   double explore_best = 0;  // the distance to explore_to when it last got min_approach nearer
   double explore_reach = 0;  // exploring ends within this distance of explore_to
   bool inspecting = false;   // explore_to is where to look at far obstacle evidence from
+  // where to look once there (PeekPose), if peek_pending
+  bool peek_pending = false;
+  Eigen::Vector2d peek_at = Eigen::Vector2d::Zero();
   // believed positions of the last cycles (thrash_cycles) and the nearest to the goal so far
   std::deque<std::pair<Eigen::Vector2d, double>> recent;
   int thrashes = 0;         // times it went back and forth (thrash_cycles)
@@ -807,6 +833,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
         look_around();
+        if (peek_pending) look_at_floor(peek_at);
+        peek_pending = false;
         looked_at = believed;
         just_looked = true;
         continue;
@@ -865,38 +893,48 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           continue;
         }
       } else if (!nearer && explorations < limits.max_explorations) {
-        nav::PlanResult edge =
-            nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
-        if (moves(edge)) {
-          const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
-          start_exploring(end + (end - position).normalized() * limits.explore_beyond,
-                          limits.explore_beyond, false, position);
-          toward = std::move(edge);
-          nearer = true;
-        }
-      }
-      if (!nearer && !explore_to && explorations < limits.max_explorations) {
-        // where to look from: at far obstacle evidence, or into the unseen cells a blind move
-        // needs; of the two, the one the robot reaches by the cheaper way
+        // or go and look, at obstacle evidence seen from afar or into the unseen cells a blind
+        // move needs (of the two, the one reached by the cheaper way), where that way is
+        // shorter than the one to the window's edge: exploring beyond the window with a gap on
+        // the way unseen, the robot went back and forth along a divider until it gave up
         std::optional<Eigen::Vector2d> suspect = InspectionPose(
             fog, maps, believed, scenario, planner_params, posture, limits.inspect_range);
         if (!suspect) {
           suspect = InspectionPose(fog, maps, believed, scenario, planner_params, posture,
                                    limits.inspect_near_range);
         }
-        double best_cost = std::numeric_limits<double>::infinity();
-        for (const auto& at : {suspect, PeekPose(fog, believed, scenario, planner_params, posture,
-                                                   limits.min_approach)}) {
+        const std::optional<Peek> peek = PeekPose(fog, believed, scenario, planner_params,
+                                                  posture, limits.min_approach, limits.peek_lead);
+        const std::optional<Eigen::Vector2d> candidates[2] = {
+            suspect, peek ? std::optional<Eigen::Vector2d>(peek->from) : std::nullopt};
+        const double reaches[2] = {limits.inspect_reach, limits.peek_reach};
+        int chosen = -1;  // the candidate to look from
+        nav::PlanResult look_way;
+        peek_pending = false;
+        for (int c = 0; c < 2; ++c) {
+          const std::optional<Eigen::Vector2d>& at = candidates[c];
           if (!at) continue;
           nav::PlanResult way = nav::PlanToward(fog, believed, *at, planner_params, posture);
-          if (leads_nearer(way, *at, (position - *at).norm()) && way.cost < best_cost) {
-            best_cost = way.cost;
-            suspect = at;
-            toward = std::move(way);
+          if (leads_nearer(way, *at, (position - *at).norm()) &&
+              (chosen < 0 || way.cost < look_way.cost)) {
+            chosen = c;
+            look_way = std::move(way);
+            peek_pending = c == 1;
+            if (peek_pending) peek_at = peek->at;
           }
         }
-        if (best_cost < std::numeric_limits<double>::infinity()) {
-          start_exploring(*suspect, limits.inspect_reach, true, position);
+        nav::PlanResult edge =
+            nav::PlanBeyond(fog, believed, scenario.goal, planner_params, posture);
+        if (chosen >= 0 && (!moves(edge) || look_way.length < edge.length)) {
+          start_exploring(*candidates[chosen], reaches[chosen], true, position);
+          toward = std::move(look_way);
+          nearer = true;
+        } else if (moves(edge)) {
+          peek_pending = false;
+          const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
+          start_exploring(end + (end - position).normalized() * limits.explore_beyond,
+                          limits.explore_beyond, false, position);
+          toward = std::move(edge);
           nearer = true;
         }
       }
