@@ -83,8 +83,9 @@ struct ExecutionLimits {
   double inspect_reach = 0.25;
   double peek_reach = 0.05;
   // There, after looking around, the eyes look at the floor this far beyond the pose the blind
-  // move goes to (the sole's front half, with a cell to spare), whatever the pan: the sweep
-  // pans to 1.2 rad, and a side-step's floor lies at 1.6 rad or more.
+  // move goes to (the sole's front half, with a cell to spare), panned as far as the neck turns
+  // (1.6 rad): the sweep pans to 1.2 rad, and a side-step's floor lies 1.57 rad aside, more
+  // where the robot came to the pose with another heading.
   double peek_lead = 0.1;
   // a robot whose last thrash_cycles positions all lie within thrash_radius of the first of
   // them, on plans that do not reach the goal, and that got no nearer to the goal than before
