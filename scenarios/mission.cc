@@ -83,10 +83,11 @@ struct ExecutionLimits {
   double inspect_reach = 0.25;
   double peek_reach = 0.05;
   // There, after looking around, the eyes look at the floor this far beyond the pose the blind
-  // move goes to (the sole's front half, with a cell to spare), panned as far as the neck turns
-  // (1.6 rad): the sweep pans to 1.2 rad, and a side-step's floor lies 1.57 rad aside, more
-  // where the robot came to the pose with another heading.
-  double peek_lead = 0.1;
+  // move goes to, panned as far as the neck turns (1.6 rad): the sweep pans to 1.2 rad, and a
+  // side-step's floor lies 1.57 rad aside, more where the robot came to the pose with another
+  // heading. Not nearer: looking 0.1-0.4 m beyond, steeply down and that far aside, the view
+  // met the robot's own arm, and the floor behind a 0.26 m gap stayed unseen (densec_003).
+  double peek_lead = 0.5;
   // a robot whose last thrash_cycles positions all lie within thrash_radius of the first of
   // them, on plans that do not reach the goal, and that got no nearer to the goal than before
   // them (min_approach), goes back and forth (plans toward a goal beyond the window change as
@@ -357,7 +358,7 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
 // so a gap that only a side-step passes stays closed while the floor behind it is hidden (a
 // 0.25 m gap in a divider the robot came to at an angle). The map with blind moves allowed may
 // have a way on; the robot looks from the last pose of that way before its first blind move,
-// at `lead` beyond the pose that move goes to (where the footprint's leading edge comes).
+// at `lead` beyond the pose that move goes to, in its direction.
 // Nothing if there is no such way or it stays where it is.
 struct Peek {
   Eigen::Vector2d from, at;
