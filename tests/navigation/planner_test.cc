@@ -1172,6 +1172,13 @@ TEST(PathPicture, DrawsTheGoalAndClipsPosesOutsideTheMap) {
   EXPECT_GT(picture.at(on_line.x(), on_line.y()).b, 100);
 }
 
+// `fog` with a 0.1 m square obstacle, 0.2 m high, centred on q
+Fog WithBlockAt(const Fog& fog, const Pose2& q) {
+  Fog blocked = fog;
+  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  return blocked;
+}
+
 // The rest of an optimal plan is optimal from where it goes on, so continuing it on the same map
 // costs what a new plan from there does; an obstacle put on it later ends it.
 TEST(Planner, ContinuesAPlanWhileTheMapAllowsIt) {
@@ -1197,9 +1204,7 @@ TEST(Planner, ContinuesAPlanWhileTheMapAllowsIt) {
   }
   // a block on the far half of the path
   const size_t k = plan.path.size() * 3 / 4;
-  const Pose2 q = plan.path[k].pose_G;
-  Fog blocked = course.fog;
-  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  const Fog blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
   EXPECT_EQ(ContinuePlan(blocked, plan, 1, plan.path[1].pose_G, course.goal_G, p).status,
             PlanStatus::kNoPath);
   // past the block it goes on
@@ -1218,9 +1223,7 @@ TEST(Planner, FindsWhereAMapStopsAPlan) {
   ASSERT_GT(plan.path.size(), 40u);
   EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
   const size_t k = plan.path.size() / 2;
-  const Pose2 q = plan.path[k].pose_G;
-  Fog blocked = course.fog;
-  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  const Fog blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
   const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
   EXPECT_LE(first, k);
   EXPECT_GT(first, k - 10);  // a body's length before the obstacle at most
@@ -1248,17 +1251,12 @@ TEST(Planner, FindsWhereAMapStopsAPlanFromAStartBetweenHeadings) {
   ASSERT_GT(plan.path.size(), 40u);
   EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
   const size_t k = plan.path.size() / 2;
-  const Pose2 q = plan.path[k].pose_G;
-  Fog blocked = course.fog;
-  FillBox(&blocked, q.x - 0.05, q.y - 0.05, q.x + 0.05, q.y + 0.05, CellType::kObstacle, 0.2f);
+  const Fog blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
   const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
   EXPECT_LE(first, k);
   EXPECT_GT(first, k - 10);
   // a start whose footprint an obstacle covers still cannot make its first move
-  Fog covered = course.fog;
-  FillBox(&covered, start.x - 0.05, start.y - 0.05, start.x + 0.05, start.y + 0.05,
-          CellType::kObstacle, 0.2f);
-  EXPECT_EQ(FirstBlockedPose(covered, plan, course.goal_G, p), 1u);
+  EXPECT_EQ(FirstBlockedPose(WithBlockAt(course.fog, start), plan, course.goal_G, p), 1u);
 }
 
 }  // namespace
