@@ -358,14 +358,16 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
 // so a gap that only a side-step passes stays closed while the floor behind it is hidden (a
 // 0.25 m gap in a divider the robot came to at an angle). The map with blind moves allowed may
 // have a way on; the robot looks from the last pose of that way before its first blind move,
-// at `lead` beyond the pose that move goes to, in its direction.
-// Nothing if there is no such way or it stays where it is.
+// at `lead` beyond the pose that move goes to, in its direction. `toward` is the real map's
+// plan toward the goal (nav::PlanToward with `params`). Nothing if there is no such way or it
+// stays where it is.
 struct Peek {
   Eigen::Vector2d from, at;
 };
 std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2& believed,
                              const Scenario& scenario, const nav::PlannerParams& params,
-                             nav::Posture posture, double min_approach, double lead) {
+                             nav::Posture posture, const nav::PlanResult& toward,
+                             double min_approach, double lead) {
   if (!params.blind_moves_stay_known) return std::nullopt;
   nav::PlannerParams blind = params;
   blind.blind_moves_stay_known = false;
@@ -381,12 +383,9 @@ std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2
   if (plan.status == nav::PlanStatus::kOk && !plan.reaches_goal) {
     if (fog.window.Contains(gx, gy)) {
       plan = nav::PlanBeyond(fog, believed, scenario.goal, blind, posture);
-    } else {
-      const nav::PlanResult real = nav::PlanToward(fog, believed, scenario.goal, params, posture);
-      if (real.status == nav::PlanStatus::kOk &&
-          end_distance(plan) >= end_distance(real) - min_approach) {
-        return std::nullopt;
-      }
+    } else if (toward.status == nav::PlanStatus::kOk &&
+               end_distance(plan) >= end_distance(toward) - min_approach) {
+      return std::nullopt;
     }
   }
   if (plan.status != nav::PlanStatus::kOk) return std::nullopt;
@@ -540,15 +539,15 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     return sim::HeadAngles{pan, tilt + elevation - wanted_elevation};
   };
 
-  // a look at the floor around `target` (on the robot's level), the head panned toward it as
-  // far as the neck turns
-  auto look_at_floor = [&](const Eigen::Vector2d& target) {
+  // a look at the floor at `target`, floor_z high, the head panned toward it as far as the
+  // neck turns
+  auto look_at_floor = [&](const Eigen::Vector2d& target, double floor_z) {
     const Eigen::Vector3d to =
         Relative(ToPerception(controller.believed_pose()), {target.x(), target.y(), 0});
     const Eigen::Vector3d camera_R = sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).translation();
+    const double below = camera_R.z() + believed_floor_z - floor_z;
     const double run_out = std::hypot(to.x() - camera_R.x(), to.y() - camera_R.y());
-    current_move = "look";
-    look(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(camera_R.z(), run_out)));
+    look(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(below, run_out)));
   };
 
   // Before getting down for the plan's crawl from path[first]: the standing eyes look up
@@ -648,16 +647,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // robot stops to look at the stairs, while it is far enough for the body not to hide it
     const nav::PathPose& pre = path[first_step - 1];
     const nav::PathPose& post = path[first_step];
-    const Eigen::Vector3d to =
-        Relative(now, {0.5 * (pre.pose_G.x + post.pose_G.x), 0.5 * (pre.pose_G.y + post.pose_G.y), 0});
-    if (to.head<2>().norm() < limits.edge_min_range ||
-        to.head<2>().norm() > limits.edge_look_range) {
-      return;
-    }
-    const Eigen::Vector3d camera_R = sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft).translation();
-    const double below = camera_R.z() + believed_floor_z - std::max(pre.floor_z, post.floor_z);
-    const double run_out = std::hypot(to.x() - camera_R.x(), to.y() - camera_R.y());
-    look(head_at_elevation(std::atan2(to.y(), to.x()), -std::atan2(below, run_out)));
+    const Eigen::Vector2d riser(0.5 * (pre.pose_G.x + post.pose_G.x),
+                                0.5 * (pre.pose_G.y + post.pose_G.y));
+    const double range = (riser - Eigen::Vector2d(now.x, now.y)).norm();
+    if (range < limits.edge_min_range || range > limits.edge_look_range) return;
+    look_at_floor(riser, std::max(pre.floor_z, post.floor_z));
     from_view(first_step);
   };
 
@@ -835,7 +829,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
         look_around();
-        if (peek_pending) look_at_floor(peek_at);
+        if (peek_pending) look_at_floor(peek_at, believed_floor_z);
         peek_pending = false;
         looked_at = believed;
         just_looked = true;
@@ -905,8 +899,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           suspect = InspectionPose(fog, maps, believed, scenario, planner_params, posture,
                                    limits.inspect_near_range);
         }
-        const std::optional<Peek> peek = PeekPose(fog, believed, scenario, planner_params,
-                                                  posture, limits.min_approach, limits.peek_lead);
+        // (`toward` holds the real map's plan toward the goal here: not exploring, not nearer)
+        const std::optional<Peek> peek =
+            PeekPose(fog, believed, scenario, planner_params, posture, toward, limits.min_approach,
+                     limits.peek_lead);
         const std::optional<Eigen::Vector2d> candidates[2] = {
             suspect, peek ? std::optional<Eigen::Vector2d>(peek->from) : std::nullopt};
         const double reaches[2] = {limits.inspect_reach, limits.peek_reach};

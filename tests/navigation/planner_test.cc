@@ -1212,6 +1212,20 @@ TEST(Planner, ContinuesAPlanWhileTheMapAllowsIt) {
             PlanStatus::kOk);
 }
 
+// FirstBlockedPose finds nothing on the map `plan` was made on; on that map with WithBlockAt on
+// the plan's middle pose (`blocked`), the first pose blocked lies at most a body's length
+// before the block. Returns that pose.
+size_t ExpectStopsBeforeAMidPathBlock(const internal::Course& course, const PlanResult& plan,
+                                      const PlannerParams& p, Fog* blocked) {
+  EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
+  const size_t k = plan.path.size() / 2;
+  *blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
+  const size_t first = FirstBlockedPose(*blocked, plan, course.goal_G, p);
+  EXPECT_LE(first, k);
+  EXPECT_GT(first, k - 10);  // a body's length before the obstacle at most
+  return first;
+}
+
 // A plan checked on the map it was made on has no blocked pose; on a map with an obstacle put on
 // it, the first pose blocked is the first one whose footprint the obstacle reaches, and every
 // pose before it is still allowed.
@@ -1221,12 +1235,8 @@ TEST(Planner, FindsWhereAMapStopsAPlan) {
   const PlanResult plan = Plan(course.fog, course.start_G, course.goal_G, p);
   ASSERT_EQ(plan.status, PlanStatus::kOk);
   ASSERT_GT(plan.path.size(), 40u);
-  EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
-  const size_t k = plan.path.size() / 2;
-  const Fog blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
-  const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
-  EXPECT_LE(first, k);
-  EXPECT_GT(first, k - 10);  // a body's length before the obstacle at most
+  Fog blocked;
+  const size_t first = ExpectStopsBeforeAMidPathBlock(course, plan, p, &blocked);
   // the path up to the pose before it goes on on the blocked map, the pose itself does not
   EXPECT_EQ(
       ContinuePlan(blocked, plan, first - 1, plan.path[first - 1].pose_G, course.goal_G, p).status,
@@ -1249,12 +1259,8 @@ TEST(Planner, FindsWhereAMapStopsAPlanFromAStartBetweenHeadings) {
   const PlanResult plan = Plan(course.fog, start, course.goal_G, p);
   ASSERT_EQ(plan.status, PlanStatus::kOk);
   ASSERT_GT(plan.path.size(), 40u);
-  EXPECT_EQ(FirstBlockedPose(course.fog, plan, course.goal_G, p), plan.path.size());
-  const size_t k = plan.path.size() / 2;
-  const Fog blocked = WithBlockAt(course.fog, plan.path[k].pose_G);
-  const size_t first = FirstBlockedPose(blocked, plan, course.goal_G, p);
-  EXPECT_LE(first, k);
-  EXPECT_GT(first, k - 10);
+  Fog blocked;
+  ExpectStopsBeforeAMidPathBlock(course, plan, p, &blocked);
   // a start whose footprint an obstacle covers still cannot make its first move
   EXPECT_EQ(FirstBlockedPose(WithBlockAt(course.fog, start), plan, course.goal_G, p), 1u);
 }
