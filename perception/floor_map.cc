@@ -23,15 +23,29 @@ namespace {
 
 constexpr uint8_t kConfirmed = 1, kLowerSeen = 2;
 
+// The slot of the cell's votes of this frame that counts height h (its plane's), opened if
+// new; -1 if the cell has no slot left (a fourth plane in one cell and frame, a few cells in
+// a look-around).
+int VoteSlot(float h, float h_sigma, int cell, MapState* state) {
+  MapState::FloorVote& v = state->floor_votes[size_t(cell)];
+  for (int k = 0; k < MapState::kFloorVotes; ++k) {
+    if (v.count[k] == 0) {
+      if (k == 0) state->floor_voted_cells.push_back(cell);
+      v.h[k] = h;
+      v.sigma[k] = h_sigma;
+      return k;
+    }
+    if (v.h[k] == h) return k;
+  }
+  return -1;
+}
+
 // eq. (21) for a height h with sigma: within the gate the two are averaged by inverse variance;
 // beyond it the more precise one wins, with the paper's preference for the higher floor
 void FuseHeight(const FloorParams& p, float h, float h_sigma, size_t cell, MapState* state) {
   MapState& s = *state;
   float& f = s.floor[cell];
   float& var = s.floor_var[cell];
-  // each plane counts once per cell and frame: its points share one height
-  if (s.floor_frame_h[cell] == h) return;
-  s.floor_frame_h[cell] = h;
   const float min_var = float(p.min_sigma * p.min_sigma);
   const float var_h = std::max(h_sigma * h_sigma, min_var);
   if (f == -std::numeric_limits<float>::infinity()) {
@@ -73,10 +87,16 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
     }
   }
 
-  // eq. (19, 21): insert floor points that the grid confirms
-  s.floor_frame_h.assign(s.floor.size(), std::numeric_limits<float>::quiet_NaN());
+  // eq. (19, 21): insert floor points that the grid confirms. Points whose heights have a
+  // sigma vote first; each cell then fuses once per frame each height it got, in the order
+  // they came, minus the minor lower ones (FloorParams::minor_share).
+  s.floor_votes.resize(s.floor.size());  // all empty: each update empties the cells it used
   s.floor_frame_marks.assign(s.floor.size(), 0);
   const float inv_res = float(1.0 / s.window.resolution);
+  const float on_plane_sigmas = float(params.floor.on_plane_sigmas);
+  const float on_plane_min = float(params.floor.on_plane_min);
+  int last_vote_cell = -1, last_slot = -1;
+  float last_vote_h = 0;
   int last_ix = -1, last_iy = -1;
   float last_h = 0;
   bool last_ok = false;
@@ -93,25 +113,30 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       last_ok = ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ;
     }
     if (!last_ok) continue;
-    const size_t cell = size_t(s.window.Index(ix, iy));
-    float& f = s.floor[cell];
+    const int cell = s.window.Index(ix, iy);
     if (lp.h_sigma > 0) {
-      FuseHeight(params.floor, lp.h, lp.h_sigma, cell, state);
-      // what this frame says about the cell's height, for the doubt after the frame: a lower
-      // floor counts only in the middle half of the cell, so the lower side of a step edge
-      // does not doubt the edge cell's higher floor
-      if (std::abs(lp.h - f) <= gate) {
-        s.floor_frame_marks[cell] |= kConfirmed;
-      } else if (lp.h < f && f - lp.h <= lower_doubt) {
-        const float u = lp.p_G.x() * inv_res - float(ix + s.window.origin_ix);
-        const float v = lp.p_G.y() * inv_res - float(iy + s.window.origin_iy);
-        if (std::abs(u - 0.5f) < 0.25f && std::abs(v - 0.5f) < 0.25f) {
-          s.floor_frame_marks[cell] |= kLowerSeen;
-        }
+      if (on_plane_sigmas > 0 &&
+          lp.p_G.z() - lp.h > std::max(on_plane_sigmas * lp.h_sigma, on_plane_min)) {
+        continue;
       }
+      // neighbouring pixels mostly vote for the same plane in the same cell
+      if (cell != last_vote_cell || lp.h != last_vote_h) {
+        last_slot = VoteSlot(lp.h, lp.h_sigma, cell, state);
+        last_vote_cell = cell;
+        last_vote_h = lp.h;
+      }
+      if (last_slot < 0) continue;
+      MapState::FloorVote& v = s.floor_votes[size_t(cell)];
+      if (v.count[last_slot] == UINT16_MAX) continue;
+      ++v.count[last_slot];
+      // in the middle half of the cell (for the doubt below)
+      const float u = lp.p_G.x() * inv_res - float(ix + s.window.origin_ix);
+      const float w = lp.p_G.y() * inv_res - float(iy + s.window.origin_iy);
+      if (std::abs(u - 0.5f) < 0.25f && std::abs(w - 0.5f) < 0.25f) ++v.middle[last_slot];
       continue;
     }
-    s.floor_var[cell] = 0;
+    float& f = s.floor[size_t(cell)];
+    s.floor_var[size_t(cell)] = 0;
     if (lp.h < f - gate) continue;  // a lower surface under the floor already known
     if (lp.h > f + gate) {
       f = lp.h;  // a new or higher floor: only the highest is kept
@@ -119,6 +144,37 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       f = nu * f + (1.0f - nu) * lp.h;
     }
   }
+  const float minor_share = float(params.floor.minor_share);
+  const float minor_range = float(params.floor.minor_range);
+  for (int cell : s.floor_voted_cells) {
+    const MapState::FloorVote& v = s.floor_votes[size_t(cell)];
+    for (int k = 0; k < MapState::kFloorVotes && v.count[k] > 0; ++k) {
+      bool minor = false;
+      for (int j = 0; j < MapState::kFloorVotes && v.count[j] > 0; ++j) {
+        minor |= v.h[k] < v.h[j] && v.h[j] - v.h[k] <= minor_range &&
+                 float(v.count[k]) < minor_share * float(v.count[j] + v.count[k]);
+      }
+      if (!minor) FuseHeight(params.floor, v.h[k], v.sigma[k], size_t(cell), state);
+    }
+  }
+
+  // what this frame says about each cell's height, for the doubt below: a lower floor counts
+  // only in the middle half of the cell, so the lower side of a step edge does not doubt the
+  // edge cell's higher floor
+  for (int cell : s.floor_voted_cells) {
+    MapState::FloorVote& v = s.floor_votes[size_t(cell)];
+    const float f = s.floor[size_t(cell)];
+    uint8_t& marks = s.floor_frame_marks[size_t(cell)];
+    for (int k = 0; k < MapState::kFloorVotes && v.count[k] > 0; ++k) {
+      if (std::abs(v.h[k] - f) <= gate) {
+        marks |= kConfirmed;
+      } else if (v.h[k] < f && f - v.h[k] <= lower_doubt && v.middle[k] > 0) {
+        marks |= kLowerSeen;
+      }
+    }
+    v = {};
+  }
+  s.floor_voted_cells.clear();
 
   // a height that this frame confirmed nowhere near the cell while it saw a lower floor in
   // it: doubt it (the higher floor of a step edge is confirmed in the cells along the edge)

@@ -94,8 +94,8 @@ size_t MapState::MemoryBytes() const {
          (floor_var.capacity() + obstacle_range.capacity() + free_range.capacity()) *
              sizeof(float) +
          marks.capacity() + scratch.capacity() * sizeof(float) +
-         (floor_local.capacity() + floor_frame_h.capacity()) * sizeof(float) +
-         floor_frame_marks.capacity();
+         floor_local.capacity() * sizeof(float) + floor_votes.capacity() * sizeof(FloorVote) +
+         floor_voted_cells.capacity() * sizeof(int) + floor_frame_marks.capacity();
 }
 
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,

@@ -193,6 +193,20 @@ struct FloorParams {
   double min_sigma = 0.002;
   double replace_ratio = 4.0;
   double lower_doubt = 0.05;  // metres; 0 turns the doubt off
+  // Extensions for heights with a sigma, against the points of one surface that segmentation
+  // joins to a neighbouring lower plane (the riser of a step, the foot of a block's face, a rim
+  // smeared by stereo), which would lower the height of a cell the lower plane does not reach.
+  // Both
+  // only ever leave a lower height out, so a cell keeps the highest floor in it, as the paper
+  // prefers:
+  // - a floor point gives its cell its plane's height only if it lies no more than
+  //   max(on_plane_sigmas * sigma, on_plane_min) above it (on_plane_sigmas 0: always);
+  // - of the heights one frame gives a cell, one up to minor_range below another is left out if
+  //   it has fewer than minor_share of the two's points (minor_share 0: none left out).
+  double on_plane_sigmas = 2.0;
+  double on_plane_min = 0.01;   // metres
+  double minor_share = 0.25;
+  double minor_range = 0.05;    // metres
   // Eq. (19, 20) read OG(x, y, h) as the highest probability of the layers that
   // [h - verify_tolerance, h + verify_tolerance] touches, so a floor lying on a layer boundary
   // is verified by either layer.
@@ -297,7 +311,18 @@ struct MapState {
   std::vector<uint8_t> marks;
   std::vector<float> scratch;
   std::vector<float> floor_local;
-  std::vector<float> floor_frame_h;  // per cell, the last plane height fused in this frame
+  // Per cell, the planes whose floor points the current frame put in it (heights with a sigma):
+  // up to kFloorVotes heights in the order they came, each with its sigma, how many points
+  // voted for it and how many of them lie in the middle half of the cell.
+  static constexpr int kFloorVotes = 3;
+  struct FloorVote {
+    float h[kFloorVotes];
+    float sigma[kFloorVotes];
+    uint16_t count[kFloorVotes];
+    uint16_t middle[kFloorVotes];
+  };
+  std::vector<FloorVote> floor_votes;
+  std::vector<int> floor_voted_cells;  // cells with votes this frame, in the order first voted
   std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
   // per 2D cell: the nearest a ray crossed it this frame (only while overrule_ratio > 0)
   std::vector<float> free_range;

@@ -207,5 +207,62 @@ TEST(FloorMap, TheHigherFloorOfAStepEdgeStaysWhileItsNeighboursConfirmIt) {
   EXPECT_NEAR(state.FloorAt(0.42, 0.06), 0.03, 1e-6);
 }
 
+// A step's riser joined to the floor plane by segmentation: two of the floor plane's points lie
+// in a tread cell. They are too few against the tread's nine to set the cell's height, although
+// the floor plane is the more precise (which alone would let it replace the tread's height).
+TEST(FloorMap, AFewPointsOfANeighbouringPlaneDoNotSetACellsHeight) {
+  MapParams params;
+  MapState state;
+  std::vector<LabelledPoint> points = Patch(0.03f, 0.03f, 0.005f);
+  for (float y : {0.012f, 0.028f}) points.push_back({{0.401f, y, 0.005f}, 0.0f, 0.002f});
+  UpdateMaps(params, Frame(kAbove, points), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.03, 1e-6);
+  // with as many points as the tread's in the cell the floor plane is no minor height
+  for (int i = 0; i < 7; ++i) points.push_back({{0.402f, 0.02f, 0.004f}, 0.0f, 0.002f});
+  MapState both;
+  UpdateMaps(params, Frame(kAbove, points), &both);
+  EXPECT_NEAR(both.FloorAt(0.42, 0.02), 0.0, 1e-6);
+}
+
+// Points more than 2 sigma and 1 cm above their plane's height (a face joined to the plane)
+// give their cell no floor, although the grid layer they hit holds the plane's height; points
+// within that do, and so do points below their plane (they can only raise the cell's height).
+TEST(FloorMap, PointsFarAboveTheirPlaneGiveNoHeight) {
+  MapParams params;
+  MapState state;
+  UpdateMaps(params, Frame(kAbove, Patch(0.015f, 0.0f, 0.002f)), &state);
+  ASSERT_EQ(state.LayerOf(0.015), state.LayerOf(0.0));
+  EXPECT_GT(state.ProbabilityAt({0.42, 0.02, 0.015}), 0.5);
+  EXPECT_EQ(state.FloorAt(0.42, 0.02), kNegInf);
+  UpdateMaps(params, Frame(kAbove, Patch(0.008f, 0.0f, 0.002f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+  MapState below;
+  UpdateMaps(params, Frame(kAbove, Patch(0.0f, 0.015f, 0.002f)), &below);
+  EXPECT_NEAR(below.FloorAt(0.42, 0.02), 0.015, 1e-6);
+}
+
+// A minor height higher than the cell's other one is kept: the cell keeps the highest floor in
+// it, as in eq. (21).
+TEST(FloorMap, AFewPointsOfAHigherPlaneStillSetACellsHeight) {
+  MapParams params;
+  MapState state;
+  std::vector<LabelledPoint> points = Patch(0.0f, 0.0f, 0.002f);
+  for (float y : {0.012f, 0.028f}) points.push_back({{0.438f, y, 0.03f}, 0.03f, 0.002f});
+  UpdateMaps(params, Frame(kAbove, points), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.03, 1e-6);
+}
+
+// A top far above a lower floor in the same cell (the edge of a table whose underside the eyes
+// see under) is never a minor height, however few its points: the higher floor wins as in
+// eq. (21).
+TEST(FloorMap, ATopOverALowerFloorCountsHoweverFewItsPointsInTheCell) {
+  MapParams params;
+  MapState state;
+  std::vector<LabelledPoint> points = Patch(0.0f, 0.0f, 0.002f);
+  for (float y : {0.012f, 0.028f}) points.push_back({{0.438f, y, 0.28f}, 0.28f, 0.002f});
+  UpdateMaps(params, Frame(kSide, points), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.28, 1e-6);
+}
+
 }  // namespace
 }  // namespace fognav::perception
