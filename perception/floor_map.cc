@@ -147,7 +147,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   const float minor_share = float(params.floor.minor_share);
   const float minor_range = float(params.floor.minor_range);
   for (int cell : s.floor_voted_cells) {
-    const MapState::FloorVote& v = s.floor_votes[size_t(cell)];
+    MapState::FloorVote& v = s.floor_votes[size_t(cell)];
     for (int k = 0; k < MapState::kFloorVotes && v.count[k] > 0; ++k) {
       bool minor = false;
       for (int j = 0; j < MapState::kFloorVotes && v.count[j] > 0; ++j) {
@@ -156,13 +156,9 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       }
       if (!minor) FuseHeight(params.floor, v.h[k], v.sigma[k], size_t(cell), state);
     }
-  }
-
-  // what this frame says about each cell's height, for the doubt below: a lower floor counts
-  // only in the middle half of the cell, so the lower side of a step edge does not doubt the
-  // edge cell's higher floor
-  for (int cell : s.floor_voted_cells) {
-    MapState::FloorVote& v = s.floor_votes[size_t(cell)];
+    // what this frame says about the cell's height, for the doubt below: a lower floor counts
+    // only in the middle half of the cell, so the lower side of a step edge does not doubt the
+    // edge cell's higher floor
     const float f = s.floor[size_t(cell)];
     uint8_t& marks = s.floor_frame_marks[size_t(cell)];
     for (int k = 0; k < MapState::kFloorVotes && v.count[k] > 0; ++k) {

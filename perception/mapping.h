@@ -196,9 +196,8 @@ struct FloorParams {
   // Extensions for heights with a sigma, against the points of one surface that segmentation
   // joins to a neighbouring lower plane (the riser of a step, the foot of a block's face, a rim
   // smeared by stereo), which would lower the height of a cell the lower plane does not reach.
-  // Both
-  // only ever leave a lower height out, so a cell keeps the highest floor in it, as the paper
-  // prefers:
+  // Both only ever leave a lower height out, so a cell keeps the highest floor in it, as the
+  // paper prefers:
   // - a floor point gives its cell its plane's height only if it lies no more than
   //   max(on_plane_sigmas * sigma, on_plane_min) above it (on_plane_sigmas 0: always);
   // - of the heights one frame gives a cell, one up to minor_range below another is left out if
