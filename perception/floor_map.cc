@@ -22,6 +22,7 @@ float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double 
 namespace {
 
 constexpr uint8_t kConfirmed = 1, kLowerSeen = 2;
+constexpr int kNoSlotYet = -2;  // VoteSlot not asked yet (it answers -1 for no slot left)
 
 // The slot of the cell's votes of this frame that counts height h (its plane's), opened if
 // new; -1 if the cell has no slot left (a fourth plane in one cell and frame, a few cells in
@@ -95,11 +96,10 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   const float inv_res = float(1.0 / s.window.resolution);
   const float on_plane_sigmas = float(params.floor.on_plane_sigmas);
   const float on_plane_min = float(params.floor.on_plane_min);
-  int last_vote_cell = -1, last_slot = -1;
-  float last_vote_h = 0;
   int last_ix = -1, last_iy = -1;
   float last_h = 0;
   bool last_ok = false;
+  int last_slot = kNoSlotYet;  // the vote slot of (last_ix, last_iy, last_h)
   for (const LabelledPoint& lp : input.points) {
     if (!std::isfinite(lp.h) || !lp.p_G.allFinite()) continue;
     const int ix = FastFloor(lp.p_G.x() * inv_res) - s.window.origin_ix;
@@ -111,6 +111,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       last_iy = iy;
       last_h = lp.h;
       last_ok = ColumnLogOddsNear(s, ix, iy, lp.h, tol) > l_occ;
+      last_slot = kNoSlotYet;
     }
     if (!last_ok) continue;
     const int cell = s.window.Index(ix, iy);
@@ -119,12 +120,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
           lp.p_G.z() - lp.h > std::max(on_plane_sigmas * lp.h_sigma, on_plane_min)) {
         continue;
       }
-      // neighbouring pixels mostly vote for the same plane in the same cell
-      if (cell != last_vote_cell || lp.h != last_vote_h) {
-        last_slot = VoteSlot(lp.h, lp.h_sigma, cell, state);
-        last_vote_cell = cell;
-        last_vote_h = lp.h;
-      }
+      if (last_slot == kNoSlotYet) last_slot = VoteSlot(lp.h, lp.h_sigma, cell, state);
       if (last_slot < 0) continue;
       MapState::FloorVote& v = s.floor_votes[size_t(cell)];
       if (v.count[last_slot] == UINT16_MAX) continue;

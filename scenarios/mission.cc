@@ -917,8 +917,6 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
               (chosen < 0 || way.cost < look_way.cost)) {
             chosen = c;
             look_way = std::move(way);
-            peek_pending = c == 1;
-            if (peek_pending) peek_at = peek->at;
           }
         }
         nav::PlanResult edge =
@@ -927,8 +925,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           start_exploring(*candidates[chosen], reaches[chosen], true, position);
           toward = std::move(look_way);
           nearer = true;
+          peek_pending = chosen == 1;
+          if (peek_pending) peek_at = peek->at;
         } else if (moves(edge)) {
-          peek_pending = false;
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
           start_exploring(end + (end - position).normalized() * limits.explore_beyond,
                           limits.explore_beyond, false, position);
