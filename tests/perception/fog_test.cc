@@ -364,6 +364,33 @@ TEST(Fog, LowOccupancyInACellWithoutFloorBesideAFloorIsUnknownNotObstacle) {
   EXPECT_EQ(TypeAt(paper, 0.62, 0.02), CellType::kObstacle);
 }
 
+TEST(Fog, EveryLayerCountsInAGridWhoseHeightIsNoMultipleOfEight) {
+  // a flat floor of known height everywhere and, in a few columns of a 13-layer grid, occupied
+  // layers (ComputeFog reads a column's layers eight at a time, the last five apart)
+  MapParams params;
+  params.grid.size_z = 13;  // layers from -0.02 m up to 0.50 m
+  MapState state;
+  ResetMaps(params, Pose2{}, &state);
+  std::fill(state.floor.begin(), state.floor.end(), 0.0f);
+  auto occupy = [&](double x, double y, std::initializer_list<int> layers) {
+    for (int iz : layers) state.log_odds[CellIndex(state, x, y) * 13 + size_t(iz)] = 2.0f;
+  };
+  occupy(0.02, 0.02, {12});     // [0.46, 0.50): a ceiling for a tunnel
+  occupy(0.42, 0.02, {9, 12});  // the lower of the two: [0.34, 0.38)
+  occupy(0.02, 0.42, {7});      // [0.26, 0.30): too low to crawl under
+  occupy(0.42, 0.42, {3, 12});  // an obstacle up to the top of layer 12
+  const Fog fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.02, 0.02), CellType::kTunnel);
+  EXPECT_NEAR(CeilingAt(fog, 0.02, 0.02), 0.46, 1e-5);
+  EXPECT_EQ(TypeAt(fog, 0.42, 0.02), CellType::kTunnel);
+  EXPECT_NEAR(CeilingAt(fog, 0.42, 0.02), 0.34, 1e-5);
+  EXPECT_EQ(TypeAt(fog, 0.02, 0.42), CellType::kObstacle);
+  EXPECT_NEAR(HeightAt(fog, 0.02, 0.42), 0.30, 1e-5);
+  EXPECT_EQ(TypeAt(fog, 0.42, 0.42), CellType::kObstacle);
+  EXPECT_NEAR(HeightAt(fog, 0.42, 0.42), 0.50, 1e-5);
+  EXPECT_EQ(TypeAt(fog, 0.82, 0.82), CellType::kFloor);
+}
+
 TEST(Fog, ClassifyFollowsThePaperAlgorithm) {
   const FogParams p;
   auto classify = [&](float f, float o, float c, float dh) {
