@@ -50,13 +50,13 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
     if (solid) top[i] = k;
   }
   std::vector<float> out(top.size(), kNegInf);
-  std::vector<uint8_t> seen(top.size(), 0);
+  std::vector<int> patch_of(top.size(), -1);  // the seed of the patch holding the cell
   std::vector<int> patch, open;
   for (int seed = 0; seed < int(top.size()); ++seed) {
-    if (top[size_t(seed)] < 0 || seen[size_t(seed)]) continue;
+    if (top[size_t(seed)] < 0 || patch_of[size_t(seed)] >= 0) continue;
     patch.clear();
     open.assign(1, seed);
-    seen[size_t(seed)] = 1;
+    patch_of[size_t(seed)] = seed;
     while (!open.empty()) {
       const int c = open.back();
       open.pop_back();
@@ -66,30 +66,56 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
         for (int jx = cx - 1; jx <= cx + 1; ++jx) {
           if (!w.Contains(jx, jy)) continue;
           const int j = w.Index(jx, jy);
-          if (top[size_t(j)] < 0 || seen[size_t(j)] ||
+          if (top[size_t(j)] < 0 || patch_of[size_t(j)] >= 0 ||
               std::abs(top[size_t(j)] - top[size_t(c)]) > 1) {
             continue;
           }
-          seen[size_t(j)] = 1;
+          patch_of[size_t(j)] = seed;
           open.push_back(j);
         }
       }
     }
-    // flat: a rough top (posts of several heights) is an obstacle, as in the ground truth
-    const auto [lo, hi] = std::minmax_element(
-        patch.begin(), patch.end(), [&](int u, int v) { return top[size_t(u)] < top[size_t(v)]; });
-    const int k_lo = top[size_t(*lo)], k_hi = top[size_t(*hi)];
-    if (k_hi - k_lo > 1) continue;
-    // a sole large: extents from the spread of the cell centres, as LabelPoints measures planes
-    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    // the cells' extents from the spread of their centres, as LabelPoints measures planes
+    auto extents = [&](const std::vector<int>& cells) {
+      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+      for (int c : cells) {
+        const double x = (c % w.size_x) * w.resolution, y = (c / w.size_x) * w.resolution;
+        sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+      }
+      return internal::Extents(double(cells.size()), sx, sy, sxx, syy, sxy);
+    };
+    // flat: its tops span at most two layers, the band; a rough top (posts of several heights)
+    // is an obstacle, as in the ground truth. A thin top may have a lower rim
+    // (FogParams::top_band_share); a patch's layers have no gaps (neighbours differ by one).
+    int count[64] = {0};
+    int k_hi = 0;
     for (int c : patch) {
-      const double x = (c % w.size_x) * w.resolution, y = (c / w.size_x) * w.resolution;
-      sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+      ++count[top[size_t(c)]];
+      k_hi = std::max(k_hi, top[size_t(c)]);
     }
-    if (!internal::SpansAtLeast(double(patch.size()), sx, sy, sxx, syy, sxy, p.min_floor_length,
-                                p.min_floor_width)) {
-      continue;
+    const int k_lo = k_hi > 0 && count[k_hi - 1] > 0 ? k_hi - 1 : k_hi;
+    const int in_band = count[k_hi] + (k_lo < k_hi ? count[k_lo] : 0);
+    if (in_band < int(patch.size())) {
+      if (in_band < p.top_band_share * double(patch.size()) ||
+          extents(patch)(1) > p.top_band_max_width) {
+        continue;
+      }
+      // every cell below the band has a neighbour outside the patch
+      const bool rim_only = std::all_of(patch.begin(), patch.end(), [&](int c) {
+        if (top[size_t(c)] >= k_lo) return true;
+        const int cx = c % w.size_x, cy = c / w.size_x;
+        for (int jy = cy - 1; jy <= cy + 1; ++jy) {
+          for (int jx = cx - 1; jx <= cx + 1; ++jx) {
+            if (!w.Contains(jx, jy) || patch_of[size_t(w.Index(jx, jy))] != seed) return true;
+          }
+        }
+        return false;
+      });
+      if (!rim_only) continue;  // the top: the band and its lower rim, whose faces reach it unseen
     }
+    // a sole large
+    const Eigen::Vector2d e = extents(patch);
+    if (e(0) < p.min_floor_length || e(1) < p.min_floor_width) continue;
     // one height for the flat top: the middle of its layer, or the boundary of its two
     const float h = z_min + (float(k_lo) + (k_hi > k_lo ? 1.0f : 0.5f)) * res;
     for (int c : patch) out[size_t(c)] = h;

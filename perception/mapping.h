@@ -264,6 +264,16 @@ struct FogParams {
   // height is too rough to tell stairs) and as before otherwise; the neighbours' floor change
   // sees the drop, and occupied layers count for them as without it.
   bool infer_tops = true;
+  // Extension of infer_tops: a far wall's top is seen as tops of two layers in most of its
+  // cells, but lower along its rim, where the eyes saw its face and not up to the top edge (its
+  // patch spans up to five layers). A patch whose tops span more than two layers is still a top
+  // if it is at most top_band_max_width wide, its two highest layers (the band) hold at least
+  // top_band_share of its cells and every cell below them lies on its rim (has a neighbour
+  // outside it). All its cells then take the band's height: the top is never lower than a cell
+  // saw it. Wider patches stay obstacles: in a wide patch of rough posts (the paper's Fig. 9)
+  // too, most cells' highest layers lie in two, and cells of 4 cm cannot tell the two apart.
+  double top_band_share = 2.0 / 3.0;
+  double top_band_max_width = 0.20;
   // Extension: an underside seen from below at a grazing angle (a table top just above the
   // eyes) leaves points in only some of the columns under it, so eq. (23) makes a patchwork of
   // tunnel cells and floor cells between them. A floor cell whose headroom no ray has seen free

@@ -19,19 +19,24 @@ inline int FastFloor(float x) {
 
 inline float LogOdds(double p) { return float(std::log(p / (1.0 - p))); }
 
-// Whether n points in the x-y plane with these sums (of x, y, x^2, y^2, xy; metres) extend at
-// least min_length along their principal direction and min_width across it, where an extent is
-// sqrt(12 variance) (exact for a uniformly covered rectangle): "at least a sole large", for the
-// floor candidates among planes (LabelPoints) and among inferred tops (ComputeFog).
-inline bool SpansAtLeast(double n, double sx, double sy, double sxx, double syy, double sxy,
-                         double min_length, double min_width) {
+// The extents of n points in the x-y plane with these sums (of x, y, x^2, y^2, xy; metres):
+// along their principal direction and across it, each sqrt(12 variance) (exact for a uniformly
+// covered rectangle).
+inline Eigen::Vector2d Extents(double n, double sx, double sy, double sxx, double syy,
+                               double sxy) {
   const double mx = sx / n, my = sy / n;
   Eigen::Matrix2d cov;
   cov << sxx / n - mx * mx, sxy / n - mx * my, sxy / n - mx * my, syy / n - my * my;
   const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvalues();
-  const double width = std::sqrt(12.0 * std::max(0.0, ev(0)));
-  const double length = std::sqrt(12.0 * std::max(0.0, ev(1)));
-  return length >= min_length && width >= min_width;
+  return {std::sqrt(12.0 * std::max(0.0, ev(1))), std::sqrt(12.0 * std::max(0.0, ev(0)))};
+}
+
+// Whether such points extend at least min_length by min_width: "at least a sole large", for
+// the floor candidates among planes (LabelPoints) and among inferred tops (ComputeFog).
+inline bool SpansAtLeast(double n, double sx, double sy, double sxx, double syy, double sxy,
+                         double min_length, double min_width) {
+  const Eigen::Vector2d e = Extents(n, sx, sy, sxx, syy, sxy);
+  return e(0) >= min_length && e(1) >= min_width;
 }
 
 // Ray traces every point of the input into the 3D grid (eq. 18). A crossed cell in a layer

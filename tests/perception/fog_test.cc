@@ -229,32 +229,47 @@ TEST(Fog, RimOfATopWhoseFarSideIsUnseenIsUnknownNotFloor) {
   EXPECT_EQ(TypeAt(truth, 0.50, 0.02), CellType::kBorder);
 }
 
-TEST(Fog, WallTopThatNoPlaneCoveredIsBorderNotObstacle) {
-  // a 0.1 m wide, 0.3 m high wall whose top strip segmentation missed (at a metre, stereo sees
-  // it as two or three pixels): its points carry no plane, so no cell of it has a floor
-  const std::vector<OrientedBox> world = {Floor(), AlignedBox(-0.5, 0.5, 0.41, 0.51, 0.0, 0.3)};
-  const std::vector<Eigen::Isometry3d> cameras = Around({0.0, 0.46, 0.0}, 1.0, 0.5);
+// Index in the state's 2D arrays of the cell holding grid-frame (x, y).
+size_t CellIndex(const MapState& state, double x, double y) {
+  int ix, iy;
+  state.window.CellOf(x, y, &ix, &iy);
+  return size_t(state.window.Index(ix, iy));
+}
+
+// A 0.1 m wide, 0.3 m high wall along x (y from 0.41 to 0.51) whose top strip segmentation
+// missed (at a metre, stereo sees it as two or three pixels): its points carry no plane, so no
+// cell of it has a floor.
+std::vector<OrientedBox> WallWorld() {
+  return {Floor(), AlignedBox(-0.5, 0.5, 0.41, 0.51, 0.0, 0.3)};
+}
+
+void PerceiveWallWithoutTopPlane(const MapParams& params, MapState* state) {
+  const std::vector<OrientedBox> world = WallWorld();
   const CameraIntrinsics K = MakeIntrinsics(176, 144, 45.0);
+  for (const Eigen::Isometry3d& X_GC : Around({0.0, 0.46, 0.0}, 1.0, 0.5)) {
+    internal::SyntheticFrame frame = RenderBoxes(world, X_GC, K);
+    for (size_t i = 0; i < frame.points_C.points.size(); ++i) {
+      const Eigen::Vector3f p_G = X_GC.cast<float>() * frame.points_C.points[i];
+      if (PointImage::Valid(frame.points_C.points[i]) && p_G.z() > 0.299f) {
+        frame.planes.labels.data[i] = -1;
+      }
+    }
+    MapInput in;
+    in.p_GC = X_GC.translation();
+    in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_GC, {});
+    UpdateMaps(params, in, state);
+  }
+}
+
+TEST(Fog, WallTopThatNoPlaneCoveredIsBorderNotObstacle) {
   auto perceive = [&](const MapParams& params) {
     MapState state;
-    for (const Eigen::Isometry3d& X_GC : cameras) {
-      internal::SyntheticFrame frame = RenderBoxes(world, X_GC, K);
-      for (size_t i = 0; i < frame.points_C.points.size(); ++i) {
-        const Eigen::Vector3f p_G = X_GC.cast<float>() * frame.points_C.points[i];
-        if (PointImage::Valid(frame.points_C.points[i]) && p_G.z() > 0.299f) {
-          frame.planes.labels.data[i] = -1;
-        }
-      }
-      MapInput in;
-      in.p_GC = X_GC.translation();
-      in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, X_GC, {});
-      UpdateMaps(params, in, &state);
-    }
+    PerceiveWallWithoutTopPlane(params, &state);
     return ComputeFog(params, state);
   };
   MapParams params;
   const Fog fog = perceive(params);
-  const Fog truth = GroundTruthFog(world, fog.window, params.fog);
+  const Fog truth = GroundTruthFog(WallWorld(), fog.window, params.fog);
   for (double x = -0.38; x <= 0.38; x += 0.04) {
     for (double y : {0.42, 0.46, 0.50}) {  // the cells whose centre lies on the wall
       EXPECT_EQ(TypeAt(fog, x, y), TypeAt(truth, x, y)) << x << " " << y;
@@ -273,6 +288,56 @@ TEST(Fog, WallTopThatNoPlaneCoveredIsBorderNotObstacle) {
   EXPECT_EQ(TypeAt(perceive(params), 0.0, 0.46), CellType::kObstacle);
 }
 
+TEST(Fog, WallTopWithALowerRimIsStillATop) {
+  // the wall above, but along part of its near side the eyes saw the face only up to one and
+  // two layers below the wall's highest layer (a far wall's rim): its tops span three layers
+  MapParams params;
+  MapState state;
+  PerceiveWallWithoutTopPlane(params, &state);
+  auto highest_layer = [&](size_t i) {
+    int k = -1;
+    for (int iz = 0; iz < state.size_z; ++iz) {
+      if (state.log_odds[i * size_t(state.size_z) + size_t(iz)] > 0) k = iz;
+    }
+    return k;
+  };
+  const int top = highest_layer(CellIndex(state, 0.0, 0.42));
+  ASSERT_GT(top, 2);
+  for (int k = 0; k < 4; ++k) {  // the cells centred at x = -0.26 ... -0.14
+    const size_t i = CellIndex(state, -0.26 + 0.04 * k, 0.42);
+    for (int iz = top - k / 2; iz < state.size_z; ++iz) {
+      state.log_odds[i * size_t(state.size_z) + size_t(iz)] = -2.0f;
+    }
+  }
+  ASSERT_EQ(highest_layer(CellIndex(state, -0.14, 0.42)), top - 2);
+  Fog fog = ComputeFog(params, state);
+  const Fog truth = GroundTruthFog(WallWorld(), fog.window, params.fog);
+  for (double x = -0.38; x <= 0.38; x += 0.04) {
+    for (double y : {0.42, 0.46, 0.50}) {  // the lower rim too: its face reaches the top unseen
+      EXPECT_EQ(TypeAt(fog, x, y), TypeAt(truth, x, y)) << x << " " << y;
+      EXPECT_NEAR(HeightAt(fog, x, y), 0.3, 0.02) << x << " " << y;
+    }
+  }
+  // without the band every cell of the wall is an obstacle
+  params.fog.top_band_share = 1.0;
+  fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.0, 0.46), CellType::kObstacle);
+  // nor is a wall wider than top_band_max_width a top with a lower rim
+  params.fog.top_band_share = 2.0 / 3.0;
+  params.fog.top_band_max_width = 0.08;
+  fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.0, 0.46), CellType::kObstacle);
+  // nor one with a lower cell inside it, off its rim (a rough top)
+  params.fog.top_band_max_width = 0.20;
+  const size_t inner = CellIndex(state, -0.22, 0.46);
+  for (int iz = top - 1; iz < state.size_z; ++iz) {
+    state.log_odds[inner * size_t(state.size_z) + size_t(iz)] = -2.0f;
+  }
+  state.log_odds[inner * size_t(state.size_z) + size_t(top - 2)] = 2.0f;
+  fog = ComputeFog(params, state);
+  EXPECT_EQ(TypeAt(fog, 0.0, 0.46), CellType::kObstacle);
+}
+
 TEST(Fog, TableSeenFromBelowStaysTunnelWithInferredTops) {
   // a table whose top is below the eyes, seen only from crawling height: its columns hold the
   // floor, free space and the occupied underside, no solid from the floor up, so no top is
@@ -289,13 +354,6 @@ TEST(Fog, TableSeenFromBelowStaysTunnelWithInferredTops) {
       EXPECT_EQ(TypeAt(fog, x, y), CellType::kTunnel) << x << " " << y;
     }
   }
-}
-
-// Index in the state's 2D arrays of the cell holding grid-frame (x, y).
-size_t CellIndex(const MapState& state, double x, double y) {
-  int ix, iy;
-  state.window.CellOf(x, y, &ix, &iy);
-  return size_t(state.window.Index(ix, iy));
 }
 
 TEST(Fog, UnreliableHeightIsUnknownAndMakesNoStepAround) {
