@@ -75,15 +75,13 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
         }
       }
     }
-    // the cells' extents from the spread of their centres, as LabelPoints measures planes
-    auto extents = [&](const std::vector<int>& cells) {
-      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
-      for (int c : cells) {
-        const double x = (c % w.size_x) * w.resolution, y = (c / w.size_x) * w.resolution;
-        sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
-      }
-      return internal::Extents(double(cells.size()), sx, sy, sxx, syy, sxy);
-    };
+    // its extents from the spread of the cell centres, as LabelPoints measures planes
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (int c : patch) {
+      const double x = (c % w.size_x) * w.resolution, y = (c / w.size_x) * w.resolution;
+      sx += x, sy += y, sxx += x * x, syy += y * y, sxy += x * y;
+    }
+    const Eigen::Vector2d extents = internal::Extents(double(patch.size()), sx, sy, sxx, syy, sxy);
     // flat: its tops span at most two layers, the band; a rough top (posts of several heights)
     // is an obstacle, as in the ground truth. A thin top may have a lower rim
     // (FogParams::top_band_share); a patch's layers have no gaps (neighbours differ by one).
@@ -97,7 +95,7 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
     const int in_band = count[k_hi] + (k_lo < k_hi ? count[k_lo] : 0);
     if (in_band < int(patch.size())) {
       if (in_band < p.top_band_share * double(patch.size()) ||
-          extents(patch)(1) > p.top_band_max_width) {
+          extents(1) > p.top_band_max_width) {
         continue;
       }
       // every cell below the band has a neighbour outside the patch
@@ -114,8 +112,7 @@ std::vector<float> InferTops(const MapParams& params, const MapState& state,
       if (!rim_only) continue;  // the top: the band and its lower rim, whose faces reach it unseen
     }
     // a sole large
-    const Eigen::Vector2d e = extents(patch);
-    if (e(0) < p.min_floor_length || e(1) < p.min_floor_width) continue;
+    if (extents(0) < p.min_floor_length || extents(1) < p.min_floor_width) continue;
     // one height for the flat top: the middle of its layer, or the boundary of its two
     const float h = z_min + (float(k_lo) + (k_hi > k_lo ? 1.0f : 0.5f)) * res;
     for (int c : patch) out[size_t(c)] = h;
