@@ -148,9 +148,9 @@ void WriteViewFrames(const StereoView& view, const ViewResult& result, const std
   WritePng(perception::DrawSegments(result.planes), dir + "/" + prefix + "_segments.png");
 }
 
-std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet) {
+std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,
+                        const PerceptionParams& params) {
   MakeDirectory(out_dir);
-  const PerceptionParams params;
   sim::World world(MakeWorldSpec(scenario));
   sim::Controller controller(world.model());
   const sim::Humanoid& humanoid = controller.humanoid();
