@@ -190,3 +190,29 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
 }
 
 }  // namespace fognav::perception::internal
+
+namespace fognav::perception {
+
+void FadeGrid(const MapParams& params, double keep, MapState* state) {
+  MapState& s = *state;
+  const float inv_res = float(1.0 / s.window.resolution);
+  const float tl = float(params.floor.verify_tolerance) * inv_res;
+  for (int iy = 0; iy < s.window.size_y; ++iy) {
+    for (int ix = 0; ix < s.window.size_x; ++ix) {
+      const size_t cell = size_t(s.window.Index(ix, iy));
+      const float f = s.floor[cell];
+      int lo = s.size_z, hi = -1;  // the layers that hold the floor height: spared
+      if (f != -std::numeric_limits<float>::infinity()) {
+        const float zl = (f - float(s.z_min)) * inv_res;
+        lo = std::max(0, internal::FastFloor(zl - tl));
+        hi = std::min(s.size_z - 1, internal::FastFloor(zl + tl));
+      }
+      float* column = s.log_odds.data() + cell * size_t(s.size_z);
+      for (int iz = 0; iz < s.size_z; ++iz) {
+        if (iz < lo || iz > hi) column[iz] *= float(keep);
+      }
+    }
+  }
+}
+
+}  // namespace fognav::perception

@@ -367,6 +367,12 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
 // are erased, entering ones are unknown). Resets the state if it is empty or sized differently.
 void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
 
+// Weakens what the 3D grid holds to keep times its log-odds (0 forgets, 1 keeps all), except
+// the layers that hold each cell's floor height (those eq. 20 verifies it against, within
+// verify_tolerance): a fresh look then outvotes old evidence without dropping known floors,
+// among them a table top held by a single weak layer whose floor seen below would take its cell.
+void FadeGrid(const MapParams& params, double keep, MapState* state);
+
 // One perception cycle (Sections 5.1-5.3): scroll to the robot, update the 3D grid by ray
 // tracing from the camera to every point (Amanatides-Woo traversal, rays clipped to the grid;
 // within one frame a cell is updated at most once, as occupied if any ray ends in it, else as

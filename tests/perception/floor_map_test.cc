@@ -257,5 +257,40 @@ TEST(FloorMap, AFewPointsOfAHigherPlaneStillSetACellsHeight) {
   }
 }
 
+// A fresh look fades the grid (FadeGrid) but spares the layers that hold floor heights: a top
+// seen once (one hit, 0.85) would fall below P_occ (0.41) at a quarter, and eq. (20) would drop
+// it; other layers fade, in floor cells and elsewhere.
+TEST(FloorMap, FadingTheGridKeepsTheLayersThatHoldFloorHeights) {
+  MapParams params;
+  MapState state;
+  std::vector<LabelledPoint> points = Patch(0.30f, 0.30f);
+  const LabelledPoint obstacle{{0.42f, 0.22f, 0.30f}, kNegInf};  // a point of no floor plane
+  points.push_back(obstacle);
+  UpdateMaps(params, Frame(kAbove, points), &state);
+  ASSERT_NEAR(state.FloorAt(0.42, 0.02), 0.30, 1e-6);
+  const double top = state.ProbabilityAt({0.42, 0.02, 0.30});
+  const double other = state.ProbabilityAt({0.42, 0.22, 0.30});
+  ASSERT_GT(top, 0.6);
+  ASSERT_GT(other, 0.6);
+  const auto faded = [](double p, double keep) {
+    return 1.0 / (1.0 + std::exp(-keep * std::log(p / (1.0 - p))));
+  };
+
+  MapState plain = state;
+  for (float& l : plain.log_odds) l *= 0.25f;
+  UpdateMaps(params, Frame(kAbove, {}), &plain);
+  EXPECT_EQ(plain.FloorAt(0.42, 0.02), kNegInf);  // what fading everything does
+
+  FadeGrid(params, 0.25, &state);
+  EXPECT_NEAR(state.ProbabilityAt({0.42, 0.02, 0.30}), top, 1e-6);
+  EXPECT_NEAR(state.ProbabilityAt({0.42, 0.22, 0.30}), faded(other, 0.25), 1e-5);
+  UpdateMaps(params, Frame(kAbove, {}), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.30, 1e-6);
+  // the free layers the rays crossed above the top fade too
+  const double above = state.ProbabilityAt({0.42, 0.02, 0.45});
+  EXPECT_LT(above, 0.5);
+  EXPECT_NEAR(above, plain.ProbabilityAt({0.42, 0.02, 0.45}), 1e-6);
+}
+
 }  // namespace
 }  // namespace fognav::perception
