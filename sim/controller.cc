@@ -76,7 +76,10 @@ std::vector<HeadAngles> LookAroundSweep(const LookAroundParams& params) {
   for (size_t t = 0; t < params.tilts.size(); ++t) {
     for (size_t i = 0; i < params.pans.size(); ++i) {
       const size_t k = t % 2 == 0 ? i : params.pans.size() - 1 - i;
-      views.push_back({params.pans[k], params.tilts[t]});
+      const double pan =
+          t == 0 ? std::clamp(params.pans[k], -params.near_pan_limit, params.near_pan_limit)
+                 : params.pans[k];
+      views.push_back({pan, params.tilts[t]});
     }
   }
   views.push_back({0.0, params.tilts.empty() ? 0.0 : params.tilts.back()});

@@ -91,10 +91,14 @@ struct HeadAngles {
 struct LookAroundParams {
   std::vector<double> pans = {-1.2, -0.6, 0.0, 0.6, 1.2};  // rad
   std::vector<double> tilts = {1.1, 0.55};                 // rad, near ring first
+  // The near ring's views pan at most this far aside (rad). Looking down 1.1 rad and 1.2 rad
+  // aside, arm and shoulder hid the floor beside the feet from one eye: on the course's start
+  // views 53% of those pixels got a stereo point, 83% at 1.0 rad, 87% looking straight down.
+  double near_pan_limit = 1.0;
 };
 
 // Head views that cover the floor around and ahead of the feet (back and forth in pan, the
-// near ring first), ending looking ahead. The mission runner perceives once at each view.
+// near ring first, within near_pan_limit), ending looking ahead. The mission runner perceives once at each view.
 std::vector<HeadAngles> LookAroundSweep(const LookAroundParams& params = {});
 
 enum class Mode { kStanding, kCrawling };

@@ -398,6 +398,25 @@ TEST_F(ControllerTest, LooksAroundAtTheFloorNearAndAhead) {
   EXPECT_NEAR(views.back().pan, 0.0, 1e-9);
 }
 
+// The near ring stops short of the far ring's pans, where arm and shoulder hide the floor from
+// one eye; both rings keep their order and the far ring pans as far as asked.
+TEST(LookAroundSweep, NearRingPansNoFurtherThanItsLimit) {
+  LookAroundParams params;
+  params.pans = {-1.4, -0.7, 0.0, 0.7, 1.4};
+  params.tilts = {1.0, 0.5};
+  params.near_pan_limit = 0.9;
+  const std::vector<HeadAngles> views = LookAroundSweep(params);
+  ASSERT_EQ(views.size(), 11u);
+  const std::vector<double> near = {-0.9, -0.7, 0.0, 0.7, 0.9}, far = {1.4, 0.7, 0.0, -0.7, -1.4};
+  for (size_t i = 0; i < 5; ++i) {
+    EXPECT_DOUBLE_EQ(views[i].pan, near[i]);
+    EXPECT_DOUBLE_EQ(views[i].tilt, 1.0);
+    EXPECT_DOUBLE_EQ(views[5 + i].pan, far[i]);
+    EXPECT_DOUBLE_EQ(views[5 + i].tilt, 0.5);
+  }
+  EXPECT_DOUBLE_EQ(views.back().pan, 0.0);
+}
+
 // renders off-screen through OSMesa
 TEST_F(ControllerTest, ClipRecorderWritesAFrameEveryFewTicks) {
   Load("");
