@@ -1,8 +1,12 @@
 #include "perception/mapping.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -35,16 +39,204 @@ struct BodyTest {
 
 // Sums over one plane's points in the grid frame.
 struct PlaneMoments {
-  double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, syy = 0;
+  double n = 0, sx = 0, sy = 0, sz = 0, sxx = 0, sxy = 0, syy = 0, szz = 0;
   void Add(const Eigen::Vector3f& p) {
     n += 1;
     sx += p.x();
     sy += p.y();
     sz += p.z();
+    szz += double(p.z()) * p.z();
     sxx += double(p.x()) * p.x();
     sxy += double(p.x()) * p.y();
     syy += double(p.y()) * p.y();
   }
+};
+
+// LabelParams::face_clip: where a floor candidate meets a vertical face in the image, its
+// points smeared past the face lose their height (a floor's behind the face at its foot, a
+// top's before the face at its top). A clip holds the face in the grid frame: a point p is
+// clipped if lo < n.p + d < hi (n horizontal, towards the camera) and along_lo < u.p < along_hi
+// (u horizontal, along the face).
+struct FaceClip {
+  int floor_plane = -1;
+  Eigen::Vector3f n, u;
+  float d = 0, lo = 0, hi = 0, along_lo = 0, along_hi = 0;
+};
+
+std::vector<FaceClip> FaceClips(const LabelParams& params, const PlaneSet& planes,
+                                const Eigen::Isometry3d& X_GC, const std::vector<float>& plane_h,
+                                const std::vector<PlaneMoments>& moments) {
+  const int num_planes = int(planes.planes.size());
+  const double cos_tilt = std::cos(params.max_tilt_deg * M_PI / 180.0);
+  // vertical planes (within max_tilt_deg): horizontal normal and direction along them in the
+  // grid frame; from their points' moments, the mean and spread of the height and of the
+  // position along them, and the mean offset n.p
+  struct Face {
+    bool vertical = false;
+    Eigen::Vector3d n = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
+    double count = 0, offset = 0, mz = 0, rz = 0, mt = 0, rt = 0;
+  };
+  std::vector<Face> faces(static_cast<size_t>(num_planes));
+  bool any = false;
+  for (int k = 0; k < num_planes; ++k) {
+    Face& f = faces[size_t(k)];
+    const PlaneMoments& m = moments[size_t(k)];
+    f.n = X_GC.linear() * planes.planes[size_t(k)].n;
+    f.n.z() = 0;
+    if (f.n.norm() < cos_tilt || m.n < 1) continue;  // |horizontal part| = cos(tilt)
+    f.n.normalize();
+    f.u = Eigen::Vector3d(-f.n.y(), f.n.x(), 0);
+    f.vertical = any = true;
+    // the extents of a uniformly covered face: mean +- sqrt(3) standard deviations
+    const double ux = f.u.x(), uy = f.u.y();
+    f.count = m.n;
+    f.offset = (f.n.x() * m.sx + f.n.y() * m.sy) / m.n;
+    f.mz = m.sz / m.n;
+    f.rz = std::sqrt(3.0 * std::max(0.0, m.szz / m.n - f.mz * f.mz));
+    f.mt = (ux * m.sx + uy * m.sy) / m.n;
+    const double stt = ux * ux * m.sxx + 2 * ux * uy * m.sxy + uy * uy * m.syy;
+    f.rt = std::sqrt(3.0 * std::max(0.0, stt / m.n - f.mt * f.mt));
+  }
+  if (!any) return {};
+  // floor candidates and faces that touch in the image: within two pixels along a row or a
+  // column (trading points may leave a pixel between them)
+  const LabelImage& lab = planes.labels;
+  constexpr uint8_t kFloor = 1, kFace = 2;
+  std::vector<uint8_t> role(size_t(num_planes), 0);
+  for (int k = 0; k < num_planes; ++k) {
+    role[size_t(k)] = uint8_t((plane_h[size_t(k)] != kNegInf ? kFloor : 0) |
+                              (faces[size_t(k)].vertical ? kFace : 0));
+  }
+  std::vector<std::pair<int, int>> touch;  // (floor candidate, face), repeated
+  std::pair<int, int> last(-1, -1);
+  auto pair = [&](int a, uint8_t ra, int b) {
+    if (b == a || b < 0 || b >= num_planes) return;
+    const uint8_t rb = role[size_t(b)];
+    if ((ra & kFloor) && (rb & kFace) && last != std::pair(a, b)) touch.push_back(last = {a, b});
+    if ((rb & kFloor) && (ra & kFace) && last != std::pair(b, a)) touch.push_back(last = {b, a});
+  };
+  const int width = lab.width, height = lab.height;
+  std::vector<uint8_t> edge(size_t(width) + 8, 0);  // of a row: a label differs within reach
+  for (int v = 0; v < height; ++v) {
+    const int32_t* row = lab.data.data() + size_t(v) * size_t(width);
+    // where the label is the same two pixels on and down, nothing touches (a fast first pass)
+    const int32_t* down1 = v + 1 < height ? row + width : row;
+    const int32_t* down2 = v + 2 < height ? row + 2 * width : row;
+    const int inner = std::max(0, width - 2);
+    for (int u = 0; u < inner; ++u) {
+      edge[size_t(u)] = uint8_t((row[u] != row[u + 1]) | (row[u] != row[u + 2]) |
+                                (row[u] != down1[u]) | (row[u] != down2[u]));
+    }
+    for (int u = inner; u < width; ++u) edge[size_t(u)] = 1;
+    for (int u = 0; u < width; ++u) {
+      if (!edge[size_t(u)]) {
+        uint64_t block;  // skip eight inner pixels at once
+        std::memcpy(&block, &edge[size_t(u)], 8);
+        if (block == 0) u += 7;
+        continue;
+      }
+      const int a = row[u];
+      if (a < 0 || a >= num_planes || role[size_t(a)] == 0) continue;
+      const uint8_t ra = role[size_t(a)];
+      if (u + 1 < width) pair(a, ra, row[u + 1]);
+      if (u + 2 < width) pair(a, ra, row[u + 2]);
+      if (v + 1 < height) pair(a, ra, row[u + width]);
+      if (v + 2 < height) pair(a, ra, row[u + 2 * width]);
+    }
+  }
+  std::sort(touch.begin(), touch.end());
+  touch.erase(std::unique(touch.begin(), touch.end()), touch.end());
+  const double reach = params.face_clip;
+  std::vector<FaceClip> clips;
+  for (const auto& [a, b] : touch) {
+    const Face& f = faces[size_t(b)];
+    if (f.count < 10) continue;
+    const double h = plane_h[size_t(a)], mz = f.mz, rz = f.rz;
+    FaceClip c;
+    c.floor_plane = a;
+    c.n = f.n.cast<float>();
+    c.u = f.u.cast<float>();
+    c.d = float(-f.offset);
+    c.along_lo = float(f.mt - f.rt);
+    c.along_hi = float(f.mt + f.rt);
+    // the floor at the face's foot (nearer its foot than its top: a riser's lower tread)
+    // loses its points behind the face, the top it holds (its upper tread) those before it
+    const double to_foot = std::abs(h - (mz - rz)), to_top = std::abs(h - (mz + rz));
+    if (to_foot < to_top) {
+      if (to_foot > reach) continue;
+      c.lo = float(-reach);
+      c.hi = 0;
+    } else {
+      if (to_top > reach) continue;
+      c.lo = 0;
+      c.hi = float(reach);
+    }
+    clips.push_back(c);
+  }
+  return clips;
+}
+
+// The clips in the buckets of a coarse x-y grid that their regions overlap, so that a point
+// tests only the clips near it.
+class ClipBuckets {
+ public:
+  explicit ClipBuckets(const std::vector<FaceClip>& clips) {
+    if (clips.empty()) return;
+    std::vector<Eigen::Vector4f> boxes;  // x0, y0, x1, y1 of each clip's region
+    Eigen::Vector4f all(kInf, kInf, -kInf, -kInf);
+    for (const FaceClip& c : clips) {
+      Eigen::Vector4f box(kInf, kInf, -kInf, -kInf);
+      for (float side : {c.lo, c.hi}) {
+        for (float along : {c.along_lo, c.along_hi}) {
+          const Eigen::Vector2f p = c.n.head<2>() * (side - c.d) + c.u.head<2>() * along;
+          box.head<2>() = box.head<2>().cwiseMin(p);
+          box.tail<2>() = box.tail<2>().cwiseMax(p);
+        }
+      }
+      boxes.push_back(box);
+      all.head<2>() = all.head<2>().cwiseMin(box.head<2>());
+      all.tail<2>() = all.tail<2>().cwiseMax(box.tail<2>());
+    }
+    if (!all.allFinite()) return;
+    x0_ = all(0);
+    y0_ = all(1);
+    nx_ = std::min(kMaxSide, int((all(2) - x0_) / kCell) + 1);
+    ny_ = std::min(kMaxSide, int((all(3) - y0_) / kCell) + 1);
+    inv_cell_x_ = float(nx_) / std::max(all(2) - x0_, 1e-6f) * 0.999f;
+    inv_cell_y_ = float(ny_) / std::max(all(3) - y0_, 1e-6f) * 0.999f;
+    // per bucket its clips, each list ended by -1
+    std::vector<std::vector<int>> lists(size_t(nx_) * size_t(ny_));
+    for (size_t j = 0; j < clips.size(); ++j) {
+      const Eigen::Vector4f& b = boxes[j];
+      const int bx0 = Bx(b(0)), bx1 = Bx(b(2)), by0 = By(b(1)), by1 = By(b(3));
+      for (int by = by0; by <= by1; ++by) {
+        for (int bx = bx0; bx <= bx1; ++bx) lists[size_t(by * nx_ + bx)].push_back(int(j));
+      }
+    }
+    first_.resize(lists.size());
+    for (size_t b = 0; b < lists.size(); ++b) {
+      first_[b] = int(clip_.size());
+      clip_.insert(clip_.end(), lists[b].begin(), lists[b].end());
+      clip_.push_back(-1);
+    }
+  }
+  // the clips of p's bucket, ended by -1; nullptr if p lies outside every clip's region
+  const int* Of(const Eigen::Vector3f& p) const {
+    if (first_.empty()) return nullptr;
+    const float fx = (p.x() - x0_) * inv_cell_x_, fy = (p.y() - y0_) * inv_cell_y_;
+    if (!(fx >= 0 && fy >= 0 && fx < float(nx_) && fy < float(ny_))) return nullptr;
+    return clip_.data() + first_[size_t(int(fy) * nx_ + int(fx))];
+  }
+
+ private:
+  static constexpr float kCell = 0.1f;  // metres
+  static constexpr int kMaxSide = 128;
+  static constexpr float kInf = std::numeric_limits<float>::infinity();
+  int Bx(float x) const { return std::clamp(int((x - x0_) * inv_cell_x_), 0, nx_ - 1); }
+  int By(float y) const { return std::clamp(int((y - y0_) * inv_cell_y_), 0, ny_ - 1); }
+  float x0_ = 0, y0_ = 0, inv_cell_x_ = 0, inv_cell_y_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> first_, clip_;
 };
 
 }  // namespace
@@ -174,11 +366,29 @@ std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointIma
     plane_h[size_t(k)] = float(h);
     plane_sigma[size_t(k)] = float(std::max(planes.planes[size_t(k)].rms, params.min_height_sigma));
   }
+  const std::vector<FaceClip> clips =
+      params.face_clip > 0 ? FaceClips(params, planes, X_GC, plane_h, moments)
+                           : std::vector<FaceClip>();
+  const ClipBuckets buckets(clips);
+  std::vector<uint8_t> has_clip(size_t(num_planes), 0);
+  for (const FaceClip& c : clips) has_clip[size_t(c.floor_plane)] = 1;
   size_t kept = 0;
   for (size_t i = 0; i < out.size(); ++i) {
     if (plane_of[i] >= 0) {
-      out[i].h = plane_h[size_t(plane_of[i])];
-      if (out[i].h != kNegInf) out[i].h_sigma = plane_sigma[size_t(plane_of[i])];
+      const size_t k = size_t(plane_of[i]);
+      out[i].h = plane_h[k];
+      if (out[i].h != kNegInf) out[i].h_sigma = plane_sigma[k];
+      const int* bucket = has_clip[k] ? buckets.Of(out[i].p_G) : nullptr;
+      for (; bucket != nullptr && *bucket >= 0 && out[i].h != kNegInf; ++bucket) {
+        const FaceClip& c = clips[size_t(*bucket)];
+        if (c.floor_plane != int(k)) continue;
+        const Eigen::Vector3f& p = out[i].p_G;
+        const float side = c.n.dot(p) + c.d, along = c.u.dot(p);
+        if (side > c.lo && side < c.hi && along > c.along_lo && along < c.along_hi) {
+          out[i].h = kNegInf;
+          out[i].h_sigma = 0;
+        }
+      }
     }
     if (on_rim[i] && out[i].h == kNegInf) continue;
     out[kept++] = out[i];

@@ -108,6 +108,16 @@ struct LabelParams {
   // the robot (PerceptionParams::rim_keep_height); fattened points up there only widen a
   // ceiling a little. +inf keeps no rim point.
   double keep_column_rims_above = std::numeric_limits<double>::infinity();
+  // Extension: where a floor candidate meets a vertical plane (within max_tilt_deg of vertical)
+  // in the image, within two pixels along a row or a column, its points smeared past the face
+  // lose their height, within the face's extent along it (its extents: mean +- sqrt(3)
+  // standard deviations of its points): a floor within face_clip of the face's foot, up to
+  // face_clip behind the face; a top within face_clip of the face's top, up to face_clip before
+  // it. Stereo smears points along the rays by 1-2 cm at a few metres: the floor at a wall's
+  // foot reached into the wall's first cells, which then took the floor's height (a border at
+  // floor height that hands and knees may pass over), and a top reached a cell beyond its face.
+  // The points still count in the grid. 0 turns it off (the paper).
+  double face_clip = 0.03;  // metres
 };
 
 // A range point in the grid frame with the height h of the horizontal plane it belongs to, or

@@ -219,5 +219,60 @@ TEST(LabelPoints, ColumnRimPointsAboveTheKeepHeightAreKept) {
             size_t(floor_candidates));
 }
 
+// Stereo smears points along the rays: here every other point moves 2 cm farther, the rest
+// 2 cm nearer. The floor at a wall's foot then reaches into the wall, and the wall's top over
+// the floor before it; with face_clip those points lose their height, and only those: the
+// floor beside the wall's end, behind the line of its face, keeps it.
+TEST(LabelPoints, PointsSmearedPastAFaceLoseTheirHeight) {
+  const double face_x = 1.0;
+  const std::vector<OrientedBox> world = {Floor(),
+                                          AlignedBox(face_x, 1.1, -0.2, 0.2, 0.0, 0.3)};
+  const Eigen::Isometry3d X_WC = LookAt({0, 0, 0.5}, {1.0, 0, 0});
+  internal::SyntheticFrame frame = RenderBoxes(world, X_WC, kK);
+  for (int v = 0; v < kK.height_px; ++v) {
+    for (int u = 0; u < kK.width_px; ++u) {
+      Eigen::Vector3f& p = frame.points_C.points[size_t(v * kK.width_px + u)];
+      if (PointImage::Valid(p)) p *= 1.0f + ((u + v) % 2 == 0 ? 0.02f : -0.02f) / p.norm();
+    }
+  }
+  LabelParams params;
+  params.face_clip = 0;
+  const std::vector<LabelledPoint> off = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  params.face_clip = 0.03;
+  const std::vector<LabelledPoint> on = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  ASSERT_EQ(on.size(), off.size());  // heights change, points stay
+  int floor_behind = 0, top_before = 0, floor_beside = 0, clipped = 0;
+  for (size_t i = 0; i < on.size(); ++i) {
+    const Eigen::Vector3f& p = off[i].p_G;
+    const bool floor = std::abs(off[i].h) < 1e-3, top = std::abs(off[i].h - 0.3) < 0.01;
+    const bool behind = p.x() > face_x + 1e-3 && p.x() < face_x + 0.03;
+    const bool before = p.x() < face_x - 1e-3 && p.x() > face_x - 0.03;
+    const bool within = std::abs(p.y()) < 0.18;
+    floor_behind += floor && behind && within;
+    top_before += top && before && within;
+    floor_beside += floor && behind && std::abs(p.y()) > 0.25;
+    if (on[i].h == off[i].h) {
+      // what stays: no floor behind the face and no top before it; the rest as it was
+      EXPECT_FALSE(floor && behind && within) << p.transpose();
+      EXPECT_FALSE(top && before && within) << p.transpose();
+      continue;
+    }
+    // what goes: only heights, of floor points within 3 cm behind the face and of top points
+    // within 3 cm before it, within its width
+    ++clipped;
+    EXPECT_EQ(on[i].h, -std::numeric_limits<float>::infinity());
+    const bool floor_clip = floor && p.x() > face_x - 0.005 && p.x() < face_x + 0.035;
+    const bool top_clip = top && p.x() > face_x - 0.035 && p.x() < face_x + 0.005;
+    EXPECT_TRUE((floor_clip || top_clip) && std::abs(p.y()) < 0.21)
+        << p.transpose() << " h " << off[i].h;
+  }
+  // the smear does cross the face both ways, and the floor beside the wall's end lies behind
+  // its line
+  EXPECT_GT(floor_behind, 10);
+  EXPECT_GT(top_before, 10);
+  EXPECT_GT(floor_beside, 10);
+  EXPECT_GE(clipped, floor_behind + top_before);
+}
+
 }  // namespace
 }  // namespace fognav::perception
