@@ -98,7 +98,8 @@ struct LookAroundParams {
 };
 
 // Head views that cover the floor around and ahead of the feet (back and forth in pan, the
-// near ring first, within near_pan_limit), ending looking ahead. The mission runner perceives once at each view.
+// near ring first, within near_pan_limit), ending looking ahead. The mission runner perceives
+// once at each view.
 std::vector<HeadAngles> LookAroundSweep(const LookAroundParams& params = {});
 
 enum class Mode { kStanding, kCrawling };

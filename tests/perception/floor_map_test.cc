@@ -258,8 +258,8 @@ TEST(FloorMap, AFewPointsOfAHigherPlaneStillSetACellsHeight) {
 }
 
 // A fresh look fades the grid (FadeGrid) but spares the layers that hold floor heights: a top
-// seen once (one hit, 0.85) would fall below P_occ (0.41) at a quarter, and eq. (20) would drop
-// it; other layers fade, in floor cells and elsewhere.
+// seen once (one hit, log-odds 0.85) would fall below P_occ's 0.41 at a quarter, and eq. (20)
+// would drop it; other layers fade, in floor cells and elsewhere.
 TEST(FloorMap, FadingTheGridKeepsTheLayersThatHoldFloorHeights) {
   MapParams params;
   MapState state;

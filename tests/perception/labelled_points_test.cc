@@ -237,7 +237,8 @@ TEST(LabelPoints, PointsSmearedPastAFaceLoseTheirHeight) {
   }
   LabelParams params;
   params.face_clip = 0;
-  const std::vector<LabelledPoint> off = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
+  const std::vector<LabelledPoint> off =
+      LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
   params.face_clip = 0.03;
   const std::vector<LabelledPoint> on = LabelPoints(params, frame.points_C, frame.planes, X_WC, {});
   ASSERT_EQ(on.size(), off.size());  // heights change, points stay
