@@ -8,11 +8,16 @@
 
 namespace fognav::perception::internal {
 
-float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol) {
+void LayersNear(const MapState& state, double z, double tol, int* lo, int* hi) {
   const float inv_res = float(1.0 / state.window.resolution);
   const float zl = (float(z) - float(state.z_min)) * inv_res, tl = float(tol) * inv_res;
-  const int lo = std::max(0, FastFloor(zl - tl));
-  const int hi = std::min(state.size_z - 1, FastFloor(zl + tl));
+  *lo = std::max(0, FastFloor(zl - tl));
+  *hi = std::min(state.size_z - 1, FastFloor(zl + tl));
+}
+
+float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol) {
+  int lo, hi;
+  LayersNear(state, z, tol, &lo, &hi);
   float best = -std::numeric_limits<float>::infinity();
   const float* column = state.log_odds.data() + size_t(state.window.Index(ix, iy)) * state.size_z;
   for (int iz = lo; iz <= hi; ++iz) best = std::max(best, column[iz]);
@@ -195,17 +200,13 @@ namespace fognav::perception {
 
 void FadeGrid(const MapParams& params, double keep, MapState* state) {
   MapState& s = *state;
-  const float inv_res = float(1.0 / s.window.resolution);
-  const float tl = float(params.floor.verify_tolerance) * inv_res;
   for (int iy = 0; iy < s.window.size_y; ++iy) {
     for (int ix = 0; ix < s.window.size_x; ++ix) {
       const size_t cell = size_t(s.window.Index(ix, iy));
       const float f = s.floor[cell];
-      int lo = s.size_z, hi = -1;  // the layers that hold the floor height: spared
+      int lo = s.size_z, hi = -1;  // the layers that hold the floor height (eq. 20): spared
       if (f != -std::numeric_limits<float>::infinity()) {
-        const float zl = (f - float(s.z_min)) * inv_res;
-        lo = std::max(0, internal::FastFloor(zl - tl));
-        hi = std::min(s.size_z - 1, internal::FastFloor(zl + tl));
+        internal::LayersNear(s, f, params.floor.verify_tolerance, &lo, &hi);
       }
       float* column = s.log_odds.data() + cell * size_t(s.size_z);
       for (int iz = 0; iz < s.size_z; ++iz) {

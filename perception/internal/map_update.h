@@ -45,6 +45,9 @@ inline bool SpansAtLeast(double n, double sx, double sy, double sxx, double syy,
 void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, const MapInput& input,
                      MapState* state);
 
+// The grid's layers touching [z - tol, z + tol]: [*lo, *hi], empty (lo > hi) if none.
+void LayersNear(const MapState& state, double z, double tol, int* lo, int* hi);
+
 // Highest occupancy log-odds in column (ix, iy) over the layers touching [z - tol, z + tol];
 // -infinity if none of them lies in the grid.
 float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol);
