@@ -68,13 +68,13 @@ std::vector<FaceClip> FaceClips(const LabelParams& params, const PlaneSet& plane
                                 const std::vector<PlaneMoments>& moments) {
   const int num_planes = int(planes.planes.size());
   const double cos_tilt = std::cos(params.max_tilt_deg * M_PI / 180.0);
-  // vertical planes (within max_tilt_deg): horizontal normal and direction along them in the
-  // grid frame; from their points' moments, the mean and spread of the height and of the
-  // position along them, and the mean offset n.p
+  // vertical planes (within max_tilt_deg) of at least ten points: horizontal normal and
+  // direction along them in the grid frame; from their points' moments, the mean and spread of
+  // the height and of the position along them, and the mean offset n.p
   struct Face {
     bool vertical = false;
     Eigen::Vector3d n = Eigen::Vector3d::Zero(), u = Eigen::Vector3d::Zero();
-    double count = 0, offset = 0, mz = 0, rz = 0, mt = 0, rt = 0;
+    double offset = 0, mz = 0, rz = 0, mt = 0, rt = 0;
   };
   std::vector<Face> faces(static_cast<size_t>(num_planes));
   bool any = false;
@@ -83,13 +83,12 @@ std::vector<FaceClip> FaceClips(const LabelParams& params, const PlaneSet& plane
     const PlaneMoments& m = moments[size_t(k)];
     f.n = X_GC.linear() * planes.planes[size_t(k)].n;
     f.n.z() = 0;
-    if (f.n.norm() < cos_tilt || m.n < 1) continue;  // |horizontal part| = cos(tilt)
+    if (f.n.norm() < cos_tilt || m.n < 10) continue;  // |horizontal part| = cos(tilt)
     f.n.normalize();
     f.u = Eigen::Vector3d(-f.n.y(), f.n.x(), 0);
     f.vertical = any = true;
     // the extents of a uniformly covered face: mean +- sqrt(3) standard deviations
     const double ux = f.u.x(), uy = f.u.y();
-    f.count = m.n;
     f.offset = (f.n.x() * m.sx + f.n.y() * m.sy) / m.n;
     f.mz = m.sz / m.n;
     f.rz = std::sqrt(3.0 * std::max(0.0, m.szz / m.n - f.mz * f.mz));
@@ -150,7 +149,6 @@ std::vector<FaceClip> FaceClips(const LabelParams& params, const PlaneSet& plane
   std::vector<FaceClip> clips;
   for (const auto& [a, b] : touch) {
     const Face& f = faces[size_t(b)];
-    if (f.count < 10) continue;
     const double h = plane_h[size_t(a)], mz = f.mz, rz = f.rz;
     FaceClip c;
     c.floor_plane = a;
