@@ -4,11 +4,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include "perception/internal/map_classify.h"
 #include "perception/internal/map_update.h"
@@ -18,6 +20,22 @@ namespace fognav::perception {
 namespace {
 
 constexpr float kNegInf = -std::numeric_limits<float>::infinity();
+
+// The bit mask of a column's layers whose log-odds exceed l (nz <= 64); four at a time where
+// SSE2 is there (every x86-64).
+uint64_t LayersAbove(const float* column, int nz, float l) {
+  uint64_t mask = 0;
+  int iz = 0;
+#if defined(__SSE2__)
+  const __m128 threshold = _mm_set1_ps(l);
+  for (; iz + 4 <= nz; iz += 4) {
+    const int four = _mm_movemask_ps(_mm_cmpgt_ps(_mm_loadu_ps(column + iz), threshold));
+    mask |= uint64_t(four) << iz;
+  }
+#endif
+  for (; iz < nz; ++iz) mask |= uint64_t(column[iz] > l) << iz;
+  return mask;
+}
 
 // FogParams::infer_tops: per cell the floor height inferred from the grid for a top that no
 // plane covered, -infinity elsewhere. `highest` is the highest known floor in U(x, y),
@@ -210,21 +228,7 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   // bit mask of the occupied layers of each column
   std::vector<uint64_t> occupied(fog.type.size(), 0);
   for (size_t i = 0; i < occupied.size(); ++i) {
-    const float* column = state.log_odds.data() + i * nz;
-    // eight layers at a time: one byte each (0 or 1), packed into eight bits by a product
-    // whose terms land on distinct bits
-    for (int iz0 = 0; iz0 < nz; iz0 += 8) {
-      uint8_t bytes[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-      if (iz0 + 8 <= nz) {
-        for (int k = 0; k < 8; ++k) bytes[k] = column[iz0 + k] > l_occ;
-      } else {
-        for (int k = 0; iz0 + k < nz; ++k) bytes[k] = column[iz0 + k] > l_occ;
-      }
-      uint64_t v;
-      std::memcpy(&v, bytes, 8);
-      if constexpr (__BYTE_ORDER__ == __ORDER_BIG_ENDIAN__) v = __builtin_bswap64(v);
-      occupied[i] |= ((v * 0x0102040810204080ull) >> 56) << iz0;
-    }
+    occupied[i] = LayersAbove(state.log_odds.data() + i * nz, nz, l_occ);
   }
   // inferred tops enter eq. (24) for every cell; the obstacle threshold keeps `highest`
   std::vector<float> tops;

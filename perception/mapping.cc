@@ -283,7 +283,8 @@ size_t MapState::MemoryBytes() const {
   return log_odds.capacity() * sizeof(float) + floor.capacity() * sizeof(float) +
          (floor_var.capacity() + obstacle_range.capacity() + free_range.capacity()) *
              sizeof(float) +
-         marks.capacity() + scratch.capacity() * sizeof(float) +
+         marks.capacity() + (crossed.capacity() + floor_layers.capacity()) * sizeof(uint64_t) +
+         scratch.capacity() * sizeof(float) +
          floor_local.capacity() * sizeof(float) + floor_votes.capacity() * sizeof(FloorVote) +
          floor_voted_cells.capacity() * sizeof(int) + floor_frame_marks.capacity();
 }
@@ -409,6 +410,7 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   const OccupancyParams& g = params.grid;
   Check(g.size_x > 0 && g.size_y > 0 && g.size_z > 0 && g.resolution > 0,
         "ResetMaps: grid sizes and resolution must be positive");
+  Check(g.size_z <= 64, "ResetMaps: at most 64 layers (a column's layers are one 64-bit mask)");
   state->window = CenteredWindow(g, robot_G);
   state->size_z = g.size_z;
   state->z_min = g.z_min;
@@ -418,6 +420,7 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   state->floor_var.assign(size_t(state->window.NumCells()), 0.0f);
   state->obstacle_range.assign(size_t(state->window.NumCells()), kInf);
   state->marks.assign(cells3, 0);
+  state->crossed.assign(size_t(state->window.NumCells()), 0);
   state->scratch.assign(cells3, 0.0f);
 }
 

@@ -325,9 +325,12 @@ struct MapState {
   // its column off its floor; +infinity if none. Kept whether or not near views overrule
   // (OccupancyParams::overrule_ratio): the mission asks which obstacles were seen only afar.
   std::vector<float> obstacle_range;
-  // Scratch, reused between updates: per-cell marks of the current frame, scroll buffer, floor
+  // Scratch, reused between updates: per-cell marks of the current frame (points ended in the
+  // cell), per column the bit mask of the layers a ray crossed this frame, scroll buffer, floor
   // heights in layer units.
   std::vector<uint8_t> marks;
+  std::vector<uint64_t> crossed;
+  std::vector<uint64_t> floor_layers;  // per column: the layers its floor height spares
   std::vector<float> scratch;
   std::vector<float> floor_local;
   // Per cell, the planes whose floor points the current frame put in it (heights with a sigma):

@@ -11,7 +11,6 @@
 namespace fognav::perception::internal {
 namespace {
 
-constexpr uint8_t kMarkFree = 1;
 constexpr uint8_t kMarkHit = 2;
 constexpr uint8_t kMarkTraced = 4;  // a ray to this end cell was traced this frame
 constexpr uint8_t kHitCountStep = 8;  // bits 3-7 count the points ending in the cell (up to 31)
@@ -38,16 +37,43 @@ bool ClipToBox(const Eigen::Vector3f& a, const Eigen::Vector3f& d, const Eigen::
   return true;
 }
 
-// eq. (18) in log-odds for one cell, then clears its mark: a hit if at least min_hits points
-// ended in it, else a miss if a ray crossed it
-inline void ApplyMark(float l_hit, float l_miss, float l_min, float l_max, int min_hits,
-                      uint8_t* mark, float* l) {
-  const uint8_t m = *mark;
-  if (m == 0) return;
-  *mark = 0;
-  const bool hit = (m & kMarkHit) && (m / kHitCountStep) >= min_hits;
-  if (!hit && !(m & kMarkFree)) return;
-  *l = std::clamp(*l + (hit ? l_hit : l_miss), l_min, l_max);
+// The bit mask of layers lo..hi, 0 <= lo <= hi < 64.
+inline uint64_t LayerSpan(int lo, int hi) {
+  return (~uint64_t(0) >> (63 - hi)) & (~uint64_t(0) << lo);
+}
+
+// A height g (layer units) that rays leave unmarked within tol: layer iz is spared where
+// iz <= g + tol and the ray's lowest height in the layer exceeds g - tol. Above a ray's lowest
+// layer that height is iz itself, so those layers are a fixed mask.
+struct Spared {
+  float below = -kInf, above = -kInf;  // g - tol, g + tol
+  uint64_t layers = 0;                 // iz in (g - tol, g + tol]
+  Spared() = default;
+  Spared(float g, float tol, int nz) {
+    if (!std::isfinite(g)) return;
+    below = g - tol;
+    above = g + tol;
+    const int a = FastFloor(std::clamp(below, -2.0f, 66.0f)) + 1;
+    const int b = FastFloor(std::clamp(above, -2.0f, 66.0f));
+    const int lo = std::max(a, 0), hi = std::min(b, nz - 1);
+    if (lo <= hi) layers = LayerSpan(lo, hi);
+  }
+  // whether the ray's lowest layer lo, entered at height z_lo, is spared
+  bool Lowest(int lo, float z_lo) const { return float(lo) <= above && z_lo > below; }
+};
+
+// Whether any of the n marks is set.
+inline bool AnyMark(const uint8_t* m, int n) {
+  int i = 0;
+  for (; i + 8 <= n; i += 8) {
+    uint64_t block;
+    std::memcpy(&block, m + i, 8);
+    if (block != 0) return true;
+  }
+  for (; i < n; ++i) {
+    if (m[i] != 0) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -64,12 +90,18 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   const Eigen::Vector3f n_box(static_cast<float>(nx), static_cast<float>(ny), static_cast<float>(nz));
   const Eigen::Vector3f o_f = origin.cast<float>();
   uint8_t* marks = s.marks.data();
+  uint64_t* crossed = s.crossed.data();
   if (!a.allFinite()) return;
   // known floor heights in layer units
   std::vector<float>& floor_local = s.floor_local;
   floor_local.resize(s.floor.size());
   for (size_t i = 0; i < s.floor.size(); ++i) floor_local[i] = (s.floor[i] - float(s.z_min)) * inv_res;
   const float tol_local = float(floor_tolerance) * inv_res;
+  s.floor_layers.resize(s.floor.size());
+  for (size_t i = 0; i < s.floor.size(); ++i) {
+    s.floor_layers[i] = Spared(floor_local[i], tol_local, nz).layers;
+  }
+  const uint64_t* floor_layers = s.floor_layers.data();
 
   const bool overrule = params.overrule_ratio > 0;
   // whether height z (layer units) in column c lies off its floor: more than the tolerance
@@ -89,16 +121,15 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     const bool end_inside = b.x() >= 0.0f && b.y() >= 0.0f && b.z() >= 0.0f &&
                             b.x() < n_box.x() && b.y() < n_box.y() && b.z() < n_box.z();
     if (end_inside) {
+      // (non-negative: truncation floors)
+      const size_t c = size_t(int(b.y()) * nx + int(b.x()));
       // obstacle evidence: a point off the column's floor (a raised top's face lies below it)
-      const size_t c = size_t(FastFloor(b.y()) * nx + FastFloor(b.x()));
       if (off_floor(c, b.z())) {
         s.obstacle_range[c] = std::min(s.obstacle_range[c], (lp.p_G - p_GC).norm());
       }
-    }
-    // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same cells
-    if (end_inside) {
-      uint8_t& end_mark =
-          marks[size_t(FastFloor(b.y()) * nx + FastFloor(b.x())) * nz + FastFloor(b.z())];
+      // one traced ray per end cell (the first point's): rays to one 4 cm cell cross the same
+      // cells
+      uint8_t& end_mark = marks[c * size_t(nz) + size_t(b.z())];
       end_mark |= kMarkHit;
       if (end_mark / kHitCountStep < 31) end_mark += kHitCountStep;
       if (params.one_ray_per_end_cell) {
@@ -142,7 +173,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     // layer is only partly free then, and a floor in it stays). g is the column's known floor
     // and the height of the floor plane the ray ends on: grazing rays to a floor run inside the
     // layer of that floor for a while before they reach it.
-    const float h_end = (lp.h - float(s.z_min)) * inv_res;
+    const Spared end_spared((lp.h - float(s.z_min)) * inv_res, tol_local, nz);
     const float metres_per_t = d.norm() * res;
     auto mark_column = [&](float ta, float tb, int hit_layer) {
       if (overrule && hit_layer < 0) {
@@ -154,17 +185,15 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
       const int lo = std::clamp(int(z_low), 0, nz - 1);
       const int hi = std::clamp(int(std::max(za, zb)), 0, nz - 1);
       const float f = floor_local[col];
-      uint8_t* column = marks + size_t(col) * nz;
-      for (int iz = lo; iz <= hi; ++iz) {
-        if (iz == hit_layer) {
-          column[iz] |= kMarkHit;
-        } else {
-          const float z_in = std::max(z_low, float(iz));
-          const bool above_floor = float(iz) <= f + tol_local && z_in > f - tol_local;
-          const bool above_end = float(iz) <= h_end + tol_local && z_in > h_end - tol_local;
-          if (!above_floor && !above_end) column[iz] |= kMarkFree;
-        }
-      }
+      const uint64_t lo_bit = uint64_t(1) << lo;
+      const float z_lo = std::max(z_low, float(lo));
+      uint64_t spared = (floor_layers[col] | end_spared.layers) & ~lo_bit;
+      const bool lo_spared = (float(lo) <= f + tol_local && z_lo > f - tol_local) ||
+                             end_spared.Lowest(lo, z_lo);
+      if (lo_spared) spared |= lo_bit;
+      // the end cell is a hit (marked with its point above), never crossed
+      if (hit_layer >= 0) spared |= uint64_t(1) << hit_layer;
+      crossed[col] |= LayerSpan(lo, hi) & ~spared;
     };
     float t_enter = t0;
     for (int n = rem_x + rem_y; n > 0; --n) {
@@ -199,24 +228,31 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
         const size_t i = c * size_t(nz) + size_t(iz);
         const uint8_t m = marks[i];
         const bool hit = (m & kMarkHit) && (m / kHitCountStep) >= min_hits;
-        if ((m & kMarkFree) && !hit && s.log_odds[i] > 0 && off_floor(c, float(iz) + 0.5f)) {
+        if (((crossed[c] >> iz) & 1) && !hit && s.log_odds[i] > 0 &&
+            off_floor(c, float(iz) + 0.5f)) {
           s.log_odds[i] = 0;
         }
       }
     }
   }
-  float* l = s.log_odds.data();
-  const size_t cells = s.log_odds.size();
-  size_t i = 0;
-  for (; i + 8 <= cells; i += 8) {
-    uint64_t block;  // skip eight untouched cells at once
-    std::memcpy(&block, marks + i, 8);
-    if (block == 0) continue;
-    for (size_t j = i; j < i + 8; ++j) {
-      ApplyMark(l_hit, l_miss, l_min, l_max, min_hits, &marks[j], &l[j]);
+  // per cell: a hit if at least min_hits points ended in it, else a miss if a ray crossed it;
+  // the frame's marks are cleared
+  for (size_t c = 0; c < columns; ++c) {
+    const uint64_t free = crossed[c];
+    uint8_t* mark = marks + c * size_t(nz);
+    if (free == 0 && !AnyMark(mark, nz)) continue;
+    crossed[c] = 0;
+    float* l = s.log_odds.data() + c * size_t(nz);
+    for (int iz = 0; iz < nz; ++iz) {
+      const uint8_t m = mark[iz];
+      const bool was_crossed = (free >> iz) & 1;
+      if (m == 0 && !was_crossed) continue;
+      mark[iz] = 0;
+      const bool hit = (m & kMarkHit) && (m / kHitCountStep) >= min_hits;
+      if (!hit && !was_crossed) continue;
+      l[iz] = std::clamp(l[iz] + (hit ? l_hit : l_miss), l_min, l_max);
     }
   }
-  for (; i < cells; ++i) ApplyMark(l_hit, l_miss, l_min, l_max, min_hits, &marks[i], &l[i]);
 }
 
 }  // namespace fognav::perception::internal
