@@ -44,23 +44,18 @@ inline uint64_t LayerSpan(int lo, int hi) {
 
 // A height g (layer units) that rays leave unmarked within tol: layer iz is spared where
 // iz <= g + tol and the ray's lowest height in the layer exceeds g - tol. Above a ray's lowest
-// layer that height is iz itself, so those layers are a fixed mask.
-struct Spared {
-  float below = -kInf, above = -kInf;  // g - tol, g + tol
-  uint64_t layers = 0;                 // iz in (g - tol, g + tol]
-  Spared() = default;
-  Spared(float g, float tol, int nz) {
-    if (!std::isfinite(g)) return;
-    below = g - tol;
-    above = g + tol;
-    const int a = FastFloor(std::clamp(below, -2.0f, 66.0f)) + 1;
-    const int b = FastFloor(std::clamp(above, -2.0f, 66.0f));
-    const int lo = std::max(a, 0), hi = std::min(b, nz - 1);
-    if (lo <= hi) layers = LayerSpan(lo, hi);
-  }
-  // whether the ray's lowest layer lo, entered at height z_lo, is spared
-  bool Lowest(int lo, float z_lo) const { return float(lo) <= above && z_lo > below; }
-};
+// layer that height is iz itself, so those layers are a fixed mask, iz in (g - tol, g + tol].
+uint64_t SparedLayers(float g, float tol, int nz) {
+  if (!std::isfinite(g)) return 0;
+  const int lo = std::max(FastFloor(std::clamp(g - tol, -2.0f, 66.0f)) + 1, 0);
+  const int hi = std::min(FastFloor(std::clamp(g + tol, -2.0f, 66.0f)), nz - 1);
+  return lo <= hi ? LayerSpan(lo, hi) : 0;
+}
+
+// Whether height g spares a ray's lowest layer lo, which the ray enters at height z_lo.
+inline bool SparesLowest(float g, float tol, int lo, float z_lo) {
+  return float(lo) <= g + tol && z_lo > g - tol;
+}
 
 // Whether any of the n marks is set.
 inline bool AnyMark(const uint8_t* m, int n) {
@@ -99,7 +94,7 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   const float tol_local = float(floor_tolerance) * inv_res;
   s.floor_layers.resize(s.floor.size());
   for (size_t i = 0; i < s.floor.size(); ++i) {
-    s.floor_layers[i] = Spared(floor_local[i], tol_local, nz).layers;
+    s.floor_layers[i] = SparedLayers(floor_local[i], tol_local, nz);
   }
   const uint64_t* floor_layers = s.floor_layers.data();
 
@@ -173,7 +168,8 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     // layer is only partly free then, and a floor in it stays). g is the column's known floor
     // and the height of the floor plane the ray ends on: grazing rays to a floor run inside the
     // layer of that floor for a while before they reach it.
-    const Spared end_spared((lp.h - float(s.z_min)) * inv_res, tol_local, nz);
+    const float h_end = (lp.h - float(s.z_min)) * inv_res;
+    const uint64_t end_layers = SparedLayers(h_end, tol_local, nz);
     const float metres_per_t = d.norm() * res;
     auto mark_column = [&](float ta, float tb, int hit_layer) {
       if (overrule && hit_layer < 0) {
@@ -187,10 +183,10 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
       const float f = floor_local[col];
       const uint64_t lo_bit = uint64_t(1) << lo;
       const float z_lo = std::max(z_low, float(lo));
-      uint64_t spared = (floor_layers[col] | end_spared.layers) & ~lo_bit;
-      const bool lo_spared = (float(lo) <= f + tol_local && z_lo > f - tol_local) ||
-                             end_spared.Lowest(lo, z_lo);
-      if (lo_spared) spared |= lo_bit;
+      uint64_t spared = (floor_layers[col] | end_layers) & ~lo_bit;
+      if (SparesLowest(f, tol_local, lo, z_lo) || SparesLowest(h_end, tol_local, lo, z_lo)) {
+        spared |= lo_bit;
+      }
       // the end cell is a hit (marked with its point above), never crossed
       if (hit_layer >= 0) spared |= uint64_t(1) << hit_layer;
       crossed[col] |= LayerSpan(lo, hi) & ~spared;
