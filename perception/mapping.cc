@@ -229,7 +229,6 @@ class ClipBuckets {
  private:
   static constexpr float kCell = 0.1f;  // metres
   static constexpr int kMaxSide = 128;
-  static constexpr float kInf = std::numeric_limits<float>::infinity();
   int Bx(float x) const { return std::clamp(int((x - x0_) * inv_cell_x_), 0, nx_ - 1); }
   int By(float y) const { return std::clamp(int((y - y0_) * inv_cell_y_), 0, ny_ - 1); }
   float x0_ = 0, y0_ = 0, inv_cell_x_ = 0, inv_cell_y_ = 0;
