@@ -78,7 +78,13 @@ struct ExecutionLimits {
   // Or it goes (as above) to look into the unseen cells a side-step or backward step of a way
   // needs (PeekPose), where that is the cheaper way to go: a gap only a side-step passes stays
   // closed while the floor behind it is hidden. It goes to within peek_reach of that pose: a
-  // few centimetres aside, a wall's end hides the floor behind the gap.
+  // few centimetres aside, a wall's end hides the floor behind the gap. With no obstacle
+  // evidence to inspect and no such way, it plans as if the unseen cells were open floor and
+  // looks where the real map stops that way: unseen cells beside a top above the hands count
+  // as that top for the body (PlannerParams::hidden_reach), so a passage hidden behind a table
+  // top or between two dividers stayed closed however the robot stepped. Not while there is
+  // evidence to inspect: the open map's ways lead through every unseen corner, beyond walls
+  // too, and took the explorations that inspecting tables' rims needed (tables_by_the_wall).
   double inspect_range = 1.5;
   double inspect_near_range = 1.0;
   double inspect_reach = 0.25;
@@ -359,38 +365,70 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
 // so a gap that only a side-step passes stays closed while the floor behind it is hidden (a
 // 0.25 m gap in a divider the robot came to at an angle). The map with blind moves allowed may
 // have a way on; the robot looks from the last pose of that way before its first blind move,
-// at `lead` beyond the pose that move goes to, in its direction. `toward` is the real map's
-// plan toward the goal (nav::PlanToward with `params`). Nothing if there is no such way or it
-// stays where it is.
+// at `lead` beyond the pose that move goes to, in its direction. If `open_unseen` and there is
+// no such way, the same on the map with the unseen cells open floor (OpenUnknown): the first
+// move the real map stops may then be a walk as well. `toward` is the real map's plan toward
+// the goal (nav::PlanToward with `params`). Nothing if there is no such way or it stays where
+// it is.
 struct Peek {
   Eigen::Vector2d from, at;
 };
+
+// The map with every unknown cell made floor at height `z`.
+perception::Fog OpenUnknown(const perception::Fog& fog, float z) {
+  perception::Fog open = fog;
+  for (size_t i = 0; i < open.type.size(); ++i) {
+    if (open.type[i] != perception::CellType::kUnknown) continue;
+    open.type[i] = perception::CellType::kFloor;
+    open.height[i] = z;
+  }
+  return open;
+}
+
 std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2& believed,
                              const Scenario& scenario, const nav::PlannerParams& params,
                              nav::Posture posture, const nav::PlanResult& toward,
-                             double min_approach, double lead) {
+                             double min_approach, double lead, bool open_unseen) {
   if (!params.blind_moves_stay_known) return std::nullopt;
   nav::PlannerParams blind = params;
   blind.blind_moves_stay_known = false;
-  // to the goal; else to where its region meets the window's edge; with the goal beyond the
-  // window, min_approach nearer it than the real map leads
-  nav::PlanResult plan = PlanToGoal(fog, believed, scenario, blind, posture);
   int gx = 0, gy = 0;
   fog.window.CellOf(scenario.goal.x(), scenario.goal.y(), &gx, &gy);
   auto end_distance = [&](const nav::PlanResult& p) {
     return (Eigen::Vector2d(p.path.back().pose_G.x, p.path.back().pose_G.y) - scenario.goal)
         .norm();
   };
-  if (plan.status == nav::PlanStatus::kOk && !plan.reaches_goal) {
-    if (fog.window.Contains(gx, gy)) {
-      plan = nav::PlanBeyond(fog, believed, scenario.goal, blind, posture);
-    } else if (toward.status == nav::PlanStatus::kOk &&
-               end_distance(plan) >= end_distance(toward) - min_approach) {
-      return std::nullopt;
+  // to the goal; else to where its region meets the window's edge; with the goal beyond the
+  // window, min_approach nearer it than the real map leads
+  auto blind_way = [&](const perception::Fog& map) {
+    nav::PlanResult plan = PlanToGoal(map, believed, scenario, blind, posture);
+    if (plan.status == nav::PlanStatus::kOk && !plan.reaches_goal) {
+      if (fog.window.Contains(gx, gy)) {
+        plan = nav::PlanBeyond(map, believed, scenario.goal, blind, posture);
+      } else if (toward.status == nav::PlanStatus::kOk &&
+                 end_distance(plan) >= end_distance(toward) - min_approach) {
+        plan = nav::PlanResult{};
+      }
     }
+    return plan;
+  };
+  auto first_blocked = [&](const nav::PlanResult& plan) {
+    return plan.status == nav::PlanStatus::kOk
+               ? nav::FirstBlockedPose(fog, plan, scenario.goal, params)
+               : plan.path.size();
+  };
+  nav::PlanResult plan = blind_way(fog);
+  size_t k = first_blocked(plan);
+  if (k >= plan.path.size() && open_unseen) {
+    // the unseen cells open at the height of the floor the robot stands on
+    int rx = 0, ry = 0;
+    fog.window.CellOf(believed.x, believed.y, &rx, &ry);
+    const float z = fog.window.Contains(rx, ry) && std::isfinite(fog.HeightAt(rx, ry))
+                        ? fog.HeightAt(rx, ry)
+                        : 0.0f;
+    plan = blind_way(OpenUnknown(fog, z));
+    k = first_blocked(plan);
   }
-  if (plan.status != nav::PlanStatus::kOk) return std::nullopt;
-  const size_t k = nav::FirstBlockedPose(fog, plan, scenario.goal, params);
   if (k >= plan.path.size()) return std::nullopt;
   const perception::Pose2& before = plan.path[k - 1].pose_G;
   const perception::Pose2& blind_to = plan.path[k].pose_G;
@@ -580,6 +618,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   nav::PlanResult last_plan;  // the plan of the last cycle and the pose its run ended at
   size_t last_plan_at = 0;
   perception::Fog fog;
+
   // the edges of the next steps up or down on the plan, measured from the views
   std::vector<StepEdge> edges;
   const perception::StepEdgeParams edge_params;
@@ -903,7 +942,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         // (`toward` holds the real map's plan toward the goal here: not exploring, not nearer)
         const std::optional<Peek> peek =
             PeekPose(fog, believed, scenario, planner_params, posture, toward, limits.min_approach,
-                     limits.peek_lead);
+                     limits.peek_lead, !suspect);
         const std::optional<Eigen::Vector2d> candidates[2] = {
             suspect, peek ? std::optional<Eigen::Vector2d>(peek->from) : std::nullopt};
         const double reaches[2] = {limits.inspect_reach, limits.peek_reach};

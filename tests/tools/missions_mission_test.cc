@@ -75,7 +75,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "thick_table", "long_wall", "table_in_divider", "doorway", "divider_opening",
                       "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted",
                       "eye_level_table", "tables_by_the_wall", "gap_seen_at_an_angle",
-                      "crawl_then_gap"));
+                      "crawl_then_gap", "passage_behind_table",
+                      "corridor_between_dividers"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
