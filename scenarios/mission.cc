@@ -360,6 +360,17 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
   return Eigen::Vector2d(before.x, before.y);
 }
 
+// The map with every unknown cell made floor at height `z`.
+perception::Fog OpenUnknown(const perception::Fog& fog, float z) {
+  perception::Fog open = fog;
+  for (size_t i = 0; i < open.type.size(); ++i) {
+    if (open.type[i] != perception::CellType::kUnknown) continue;
+    open.type[i] = perception::CellType::kFloor;
+    open.height[i] = z;
+  }
+  return open;
+}
+
 // Where to look from at the unseen cells a plan would move into blind: the robot may not
 // side-step or back into cells its eyes have not seen (PlannerParams::blind_moves_stay_known),
 // so a gap that only a side-step passes stays closed while the floor behind it is hidden (a
@@ -373,17 +384,6 @@ std::optional<Eigen::Vector2d> InspectionPose(const perception::Fog& fog,
 struct Peek {
   Eigen::Vector2d from, at;
 };
-
-// The map with every unknown cell made floor at height `z`.
-perception::Fog OpenUnknown(const perception::Fog& fog, float z) {
-  perception::Fog open = fog;
-  for (size_t i = 0; i < open.type.size(); ++i) {
-    if (open.type[i] != perception::CellType::kUnknown) continue;
-    open.type[i] = perception::CellType::kFloor;
-    open.height[i] = z;
-  }
-  return open;
-}
 
 std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2& believed,
                              const Scenario& scenario, const nav::PlannerParams& params,
@@ -618,7 +618,6 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   nav::PlanResult last_plan;  // the plan of the last cycle and the pose its run ended at
   size_t last_plan_at = 0;
   perception::Fog fog;
-
   // the edges of the next steps up or down on the plan, measured from the views
   std::vector<StepEdge> edges;
   const perception::StepEdgeParams edge_params;
