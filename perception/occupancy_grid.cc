@@ -87,13 +87,13 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
   uint8_t* marks = s.marks.data();
   uint64_t* crossed = s.crossed.data();
   if (!a.allFinite()) return;
-  // known floor heights in layer units
+  // known floor heights in layer units, and the layers each spares
+  const float tol_local = float(floor_tolerance) * inv_res;
   std::vector<float>& floor_local = s.floor_local;
   floor_local.resize(s.floor.size());
-  for (size_t i = 0; i < s.floor.size(); ++i) floor_local[i] = (s.floor[i] - float(s.z_min)) * inv_res;
-  const float tol_local = float(floor_tolerance) * inv_res;
   s.floor_layers.resize(s.floor.size());
   for (size_t i = 0; i < s.floor.size(); ++i) {
+    floor_local[i] = (s.floor[i] - float(s.z_min)) * inv_res;
     s.floor_layers[i] = SparedLayers(floor_local[i], tol_local, nz);
   }
   const uint64_t* floor_layers = s.floor_layers.data();
