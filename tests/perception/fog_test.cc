@@ -581,20 +581,27 @@ TEST(Fog, HeadroomIsSeenWhereRaysCrossedEveryLayerAboveTheFloor) {
 // ceiling_gap cells between ceilings of one layer become tunnel, unless rays have seen their
 // headroom free; a wider gap, or one between ceilings of different layers, stays floor.
 TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
-  auto perceive = [](const MapParams& params, bool headroom_seen_over_gap) {
+  MapParams params;
+  const int gap = params.fog.ceiling_gap;
+  ASSERT_GE(gap, 2);
+  // the wide gap: one cell more than ceiling_gap, from x = 1.24 on
+  const double wide_end = 1.24 + 0.04 * (gap + 1);
+  auto perceive = [&](const MapParams& p, bool headroom_seen_over_gap) {
     MapState state;
     MapInput in;
     in.p_GC = Eigen::Vector3d(0.0, 0.0, 0.56);
-    for (double x = 0.805; x < 1.8; x += 0.01) {
+    for (double x = 0.805; x < wide_end + 0.6; x += 0.01) {
       for (double y = -0.055; y < 0.06; y += 0.01) {
         in.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
       }
     }
     // undersides over the cells x in [0.80, 0.84) and [0.92, 0.96) (a gap of two cells),
-    // [1.20, 1.24) and [1.40, 1.44) (four cells), all at 0.48 m; [1.60, 1.64) at 0.36 m and
-    // [1.72, 1.76) at 0.52 m (two cells between ceilings four layers apart)
+    // [1.20, 1.24) and [wide_end, wide_end + 0.04) (ceiling_gap + 1 cells), all at 0.48 m;
+    // 0.2 m further at 0.36 m and 0.32 m further at 0.52 m (two cells between ceilings four
+    // layers apart)
     const std::vector<std::pair<double, float>> undersides = {
-        {0.80, 0.48f}, {0.92, 0.48f}, {1.20, 0.48f}, {1.40, 0.48f}, {1.60, 0.36f}, {1.72, 0.52f}};
+        {0.80, 0.48f},           {0.92, 0.48f},           {1.20, 0.48f},
+        {wide_end, 0.48f},       {wide_end + 0.2, 0.36f}, {wide_end + 0.32, 0.52f}};
     for (const auto& [x0, z] : undersides) {
       for (double x = x0 + 0.005; x < x0 + 0.04; x += 0.01) {
         for (double y = -0.055; y < 0.06; y += 0.01) {
@@ -602,7 +609,7 @@ TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
         }
       }
     }
-    for (int k = 0; k < 2; ++k) UpdateMaps(params, in, &state);
+    for (int k = 0; k < 2; ++k) UpdateMaps(p, in, &state);
     if (headroom_seen_over_gap) {
       // seen from straight above the gap: rays cross its columns from 0.62 m down
       MapInput above;
@@ -612,13 +619,13 @@ TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
           above.points.push_back({Eigen::Vector3f(float(x), float(y), 0.0f), 0.0f});
         }
       }
-      for (int k = 0; k < 2; ++k) UpdateMaps(params, above, &state);
+      for (int k = 0; k < 2; ++k) UpdateMaps(p, above, &state);
     }
-    return ComputeFog(params, state);
+    return ComputeFog(p, state);
   };
-  MapParams params;
   const Fog fog = perceive(params, false);
-  for (double x : {0.82, 0.94, 1.22, 1.42, 1.62, 1.74}) {
+  const double low = wide_end + 0.22, high = wide_end + 0.34;  // the two ceilings' cell centres
+  for (double x : {0.82, 0.94, 1.22, wide_end + 0.02, low, high}) {
     EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kTunnel) << x;
   }
   for (double x : {0.86, 0.90}) {
@@ -627,10 +634,13 @@ TEST(Fog, CeilingGapsBetweenTunnelCellsOfOneLayerAreTunnel) {
     // the ceiling of the cells beside: the bottom of the layer [0.46, 0.50) holding 0.48 m
     EXPECT_NEAR(CeilingAt(fog, x, 0.0), 0.46, 1e-5) << x;
   }
-  EXPECT_NEAR(CeilingAt(fog, 1.62, 0.0), 0.34, 1e-5);
-  EXPECT_NEAR(CeilingAt(fog, 1.74, 0.0), 0.50, 1e-5);
-  EXPECT_EQ(CeilingAt(fog, 1.66, 0.0), kNegInf);
-  for (double x : {1.26, 1.30, 1.34, 1.38, 1.66, 1.70}) {
+  EXPECT_NEAR(CeilingAt(fog, low, 0.0), 0.34, 1e-5);
+  EXPECT_NEAR(CeilingAt(fog, high, 0.0), 0.50, 1e-5);
+  EXPECT_EQ(CeilingAt(fog, low + 0.04, 0.0), kNegInf);
+  for (double x = 1.26; x < wide_end; x += 0.04) {
+    EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kFloor) << x;
+  }
+  for (double x : {low + 0.04, low + 0.08}) {
     EXPECT_EQ(TypeAt(fog, x, 0.0), CellType::kFloor) << x;
   }
   // the paper: the gap is floor
