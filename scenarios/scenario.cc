@@ -8,6 +8,8 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "sim/world.h"
+
 namespace fognav::scenarios {
 namespace {
 
@@ -315,8 +317,11 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
     r.Map(sensor, "sensor", {"width", "height", "hfov_deg", "baseline", "depth"});
     if (sensor["width"]) s.sensor.width_px = r.Integer(sensor["width"], "sensor.width", 16);
     if (sensor["height"]) s.sensor.height_px = r.Integer(sensor["height"], "sensor.height", 16);
-    if (s.sensor.width_px > 4096 || s.sensor.height_px > 4096) {
-      r.Fail(sensor, "sensor", "image sizes above 4096 pixels are not supported");
+    if (s.sensor.width_px > sim::kMaxViewWidth || s.sensor.height_px > sim::kMaxViewHeight) {
+      r.Fail(sensor, "sensor",
+             "images up to " + std::to_string(sim::kMaxViewWidth) + "x" +
+                 std::to_string(sim::kMaxViewHeight) + " pixels are supported, got " +
+                 std::to_string(s.sensor.width_px) + "x" + std::to_string(s.sensor.height_px));
     }
     if (sensor["hfov_deg"]) {
       double hfov_deg = r.Number(sensor["hfov_deg"], "sensor.hfov_deg");

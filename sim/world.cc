@@ -72,7 +72,8 @@ std::string WorldXml(const WorldSpec& spec) {
   // offscreen buffer large enough for the sensor sizes scenarios allow; no multisampling, so
   // that segmentation colours are exact ids
   xml << "  <visual>\n"
-         "    <global offwidth=\"1280\" offheight=\"1024\"/>\n"
+         "    <global offwidth=\"" << kMaxViewWidth << "\" offheight=\"" << kMaxViewHeight
+      << "\"/>\n"
          "    <quality offsamples=\"0\" shadowsize=\"2048\"/>\n"
          "    <headlight ambient=\"0.45 0.45 0.45\" diffuse=\"0.5 0.5 0.5\" specular=\"0 0 0\"/>\n"
          "  </visual>\n";

@@ -27,6 +27,10 @@ struct WorldSpec {
   bool with_robot = true;  // include models/humanoid.xml
 };
 
+// The largest view the world's offscreen buffer holds, in pixels: every camera image a
+// scenario asks for must fit.
+constexpr int kMaxViewWidth = 1280, kMaxViewHeight = 1024;
+
 // The MJCF text of a world (includes "humanoid.xml" when spec.with_robot).
 std::string WorldXml(const WorldSpec& spec);
 

@@ -127,6 +127,11 @@ INSTANTIATE_TEST_SUITE_P(
                  "course.yaml:7: world.floor: expected sides of at most 30 m"},
         BadInput{"floor_center: [2.0, 0.0]", "floor_center: [2.0, 1e9]",
                  "course.yaml:8: world.floor_center[1]: expected a number within +-1000, got 1e9"},
+        // a camera image larger than the offscreen buffer it is rendered in (exit code 3 from
+        // the renderer before, at the first view)
+        BadInput{"name: unit", "name: unit\nsensor: {width: 1281}",
+                 "course.yaml:2: sensor: images up to 1280x1024 pixels are supported, got "
+                 "1281x144"},
         // goal and start off the floor
         BadInput{"position: [3.0, 0.0]", "position: [9.0, 0.0]",
                  "course.yaml:5: goal.position: the goal is off the floor"},
