@@ -155,7 +155,11 @@ struct PlannerParams {
   double max_stairs_heading_error = 0.35;
   // floor and unknown cells whose centre is within this distance of a tunnel cell's centre
   // allow crawling (the paper's "enlarged area" around a tunnel; unknown ones at the unknown
-  // penalty, as the robot may lose sight of the floor under itself), metres
+  // penalty, as the robot may lose sight of the floor under itself), metres. With
+  // get_up_under_seen_headroom, so do cells within it of floor whose headroom is unseen, but
+  // the robot gets down only within it of a tunnel cell: in a room with nothing above the eyes
+  // no floor's headroom is seen, and a robot that got down in the open to pass a narrow way
+  // crawled with its eyes at the floor, whose stereo then walled it in.
   double crawl_zone_radius = 0.8;
   // Getting down moves the robot's origin this far forward along its heading (the crawling
   // origin is at the knees, ahead of the feet; the shipped controller's KneelOffset()), getting

@@ -920,6 +920,11 @@ bool Lattice::MayBeLevelBorder(size_t cell, int q) const {
   return zone_d2_[cell] <= zone_cells * zone_cells + kEps;
 }
 
+bool Lattice::MayGetDown(int cell) const {
+  const double zone_cells = p_.crawl_zone_radius / fog_.window.resolution;
+  return tunnel_d2_[size_t(cell)] <= zone_cells * zone_cells + kEps;
+}
+
 bool Lattice::CrawlFootprintInOpen(int cell, int heading) const {
   const perception::GridWindow& w = fog_.window;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
@@ -1115,7 +1120,7 @@ int Lattice::Successors(int s, Successor* out) {
     const int dx = ix + m * kSteps[k].dx, dy = iy + m * kSteps[k].dy;
     if (w.Contains(dx, dy) && std::abs(HeightStep(cell, w.Index(dx, dy))) <= p_.h_floor) {
       const int down = StateIndex(dx, dy, k, Posture::kCrawling);
-      if (Valid(down) && CrawlFootprintInOpen(w.Index(dx, dy), k)) {
+      if (Valid(down) && MayGetDown(w.Index(dx, dy)) && CrawlFootprintInOpen(w.Index(dx, dy), k)) {
         out[n++] = {down, p_.posture_change_cost, m * step_length_[k], Move::kCrawl};
       }
     }
@@ -1317,8 +1322,9 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
         for (int k = 0; k < kNumHeadings; ++k) {
           const int s = StateIndex(ix, iy, k, Posture(q));
           if (!Valid(s)) continue;
-          const double angle = std::abs(WrapAngle(HeadingYaw(k) - start_G.yaw));
           const bool changes = Posture(q) != posture;
+          if (changes && Posture(q) == Posture::kCrawling && !MayGetDown(w.Index(ix, iy))) continue;
+          const double angle = std::abs(WrapAngle(HeadingYaw(k) - start_G.yaw));
           const double cost = d * p_.sidestep_factor +
                               angle * p_.turn_cost_per_rad *
                                   (Posture(q) == Posture::kCrawling ? p_.crawl_factor : 1.0) +

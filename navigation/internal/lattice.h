@@ -162,6 +162,10 @@ class Lattice {
   // True if no tunnel cell lies under the crawling footprint at `cell`, `heading` up to
   // kneel_clear_reach ahead of the standing origin (kneel_steps_ behind `cell`).
   bool CrawlFootprintInOpen(int cell, int heading) const;
+  // Whether the robot may get down with its crawling origin on cell: within crawl_zone_radius
+  // of a tunnel cell. The crawl zone also spans floor of unseen headroom, where a ceiling seen
+  // in part may go on, and in a room with nothing above the eyes that is all of its floor.
+  bool MayGetDown(int cell) const;
   // A step up or down from an origin at heading k: the cell offset of its end, its length and
   // the part of it across the heading (PlannerParams::max_step_sideways), the cells the
   // standing footprint sweeps and the origin cells along its line (the end included).
