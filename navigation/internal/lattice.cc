@@ -431,6 +431,7 @@ void Lattice::ComputePermissions() {
   SquaredDistanceTransform(unknown, w.size_x, w.size_y, &unknown_d2_);
   SquaredDistanceTransform(ceiling, w.size_x, w.size_y, &zone_d2_);
   const double zone_cells = p_.crawl_zone_radius / w.resolution;
+  zone_d2_max_ = zone_cells * zone_cells + kEps;
   ok_[0].assign(n, 0);
   ok_[1].assign(n, 0);
   for (size_t i = 0; i < n; ++i) {
@@ -438,7 +439,7 @@ void Lattice::ComputePermissions() {
     ok_[0][i] = t == CellType::kFloor || t == CellType::kStairs || t == CellType::kUnknown;
     ok_[1][i] = t == CellType::kTunnel ||
                 ((t == CellType::kFloor || t == CellType::kUnknown) &&
-                 zone_d2_[i] <= zone_cells * zone_cells + kEps);
+                 zone_d2_[i] <= zone_d2_max_);
   }
   // border cells may lie under a standing robot, and in the crawl zone under a crawling one, on
   // their own level (see FootprintFits), so they count as blocked for the "certainly fits" test
@@ -916,13 +917,11 @@ bool Lattice::HeadroomSeen(int cell, int heading) const {
 bool Lattice::MayBeLevelBorder(size_t cell, int q) const {
   if (fog_.type[cell] != CellType::kBorder) return false;
   if (q == 0) return true;
-  const double zone_cells = p_.crawl_zone_radius / fog_.window.resolution;
-  return zone_d2_[cell] <= zone_cells * zone_cells + kEps;
+  return zone_d2_[cell] <= zone_d2_max_;
 }
 
 bool Lattice::MayGetDown(int cell) const {
-  const double zone_cells = p_.crawl_zone_radius / fog_.window.resolution;
-  return tunnel_d2_[size_t(cell)] <= zone_cells * zone_cells + kEps;
+  return tunnel_d2_[size_t(cell)] <= zone_d2_max_;
 }
 
 bool Lattice::CrawlFootprintInOpen(int cell, int heading) const {

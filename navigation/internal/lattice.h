@@ -247,6 +247,7 @@ class Lattice {
   std::vector<double> unknown_d2_;  // squared distance to the nearest unknown cell, cells^2
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
+  double zone_d2_max_ = 0;  // crawl_zone_radius squared, cells^2 (plus kEps)
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
   // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
   std::vector<uint8_t> level_cell_[kNumHeadings];
