@@ -11,9 +11,13 @@ across the room with an opening. Objects keep 0.3 m from each other, from the wa
 the start and goal, so a way usually exists; `fognav run` reports `optimal_path_length` 0 where
 the planner finds none on the ground-truth map, and scripts/sweep.py lists such rooms apart.
 With --variants every other room also gets a wider camera (55-60 degrees, 320x240), odometry
-noise or a start turned away from the goal. Only the standard library is used.
+noise or a start turned away from the goal. With --turn each room (the same rooms as without
+it) is turned as a whole by a random angle about the origin and shifted by a random part of a
+4 cm map cell, so that its walls and objects lie at angles to the map's cells and cross them
+anywhere; the floor grows to the turned floor's bounding box. Only the standard library is used.
 """
 import argparse
+import math
 import os
 import random
 import sys
@@ -161,7 +165,27 @@ class Room:
         else:
             self.start = (self.start[0], self.start[1], rng.choice([-120, -90, 90, 150]))
 
-    def yaml(self, seed):
+    def turned(self, turn):
+        """The room turned by turn = (degrees, dx, dy) about the origin, then shifted."""
+        deg, dx, dy = turn
+        c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+
+        def at(p):
+            return [round(c * p[0] - s * p[1] + dx, 3), round(s * p[0] + c * p[1] + dy, 3)]
+
+        def yaw(a):
+            return round((a + deg + 180) % 360 - 180, 2)
+
+        self.start = tuple(at(self.start[:2])) + (yaw(self.start[2]),)
+        self.goal = tuple(at(self.goal))
+        for obj in self.objects:
+            (kind, spec), = obj.items()
+            key = "start" if kind == "stairs" else "center"
+            spec[key] = at(spec[key])
+            spec["yaw"] = yaw(spec.get("yaw", 0))
+        return at, yaw, abs(c), abs(s)
+
+    def yaml(self, seed, turn=None):
         L, W, cx = self.length, self.width, self.cx
         walls = [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
                           "size": [round(sx, 3), round(sy, 3), WALL_H]}}
@@ -170,14 +194,23 @@ class Room:
                      ("wall_s", cx, -W / 2 + WALL_T / 2, L, WALL_T),
                      ("wall_w", cx - L / 2 + WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T),
                      ("wall_e", cx + L / 2 - WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T))]
+        floor, floor_center = [L, W], [cx, 0.0]
+        if turn:
+            at, yaw, c, s = self.turned(turn)
+            for obj in walls:
+                spec = obj["box"]
+                spec["center"] = at(spec["center"])
+                spec["yaw"] = yaw(0)
+            floor = [round(c * L + s * W, 3), round(s * L + c * W, 3)]
+            floor_center = at([cx, 0.0])
         lines = [f"name: {self.name}",
                  "description: A random walled room (scripts/random_worlds.py).",
                  f"seed: {seed}",
                  f"robot: {{start: {lst(list(self.start))}}}",
                  f"goal: {{position: {lst(list(self.goal))}, tolerance: 0.2}}",
                  "world:",
-                 f"  floor: {lst([L, W])}",
-                 f"  floor_center: {lst([cx, 0.0])}",
+                 f"  floor: {lst(floor)}",
+                 f"  floor_center: {lst(floor_center)}",
                  "  objects:"]
         for obj in walls + self.objects:
             (kind, spec), = obj.items()
@@ -201,6 +234,8 @@ def main():
     parser.add_argument("--prefix", default="room", help="scenario names: PREFIX_000, ...")
     parser.add_argument("--dense", action="store_true",
                         help="3-7 objects 0.18 m apart, divider openings of 0.25-0.5 m")
+    parser.add_argument("--turn", action="store_true",
+                        help="turn each room by a random angle and shift it by part of a cell")
     args = parser.parse_args()
     if args.count < 1:
         sys.exit("random_worlds: --count must be at least 1")
@@ -209,8 +244,13 @@ def main():
         rng = random.Random(args.seed * 100003 + i)
         room = Room(rng, f"{args.prefix}_{i:03d}", i, args.variants, args.dense)
         path = os.path.join(args.out_dir, room.name + ".yaml")
+        turn = None
+        if args.turn:  # its own generator, so the rooms are those generated without --turn
+            t = random.Random(args.seed * 100003 + i + 7777777)
+            turn = (round(t.uniform(-180, 180), 1), round(t.uniform(0, 0.04), 3),
+                    round(t.uniform(0, 0.04), 3))
         with open(path, "w") as f:
-            f.write(room.yaml(args.seed * 1000 + i))
+            f.write(room.yaml(args.seed * 1000 + i, turn))
     print(f"random_worlds: {args.count} rooms in {args.out_dir}")
 
 
