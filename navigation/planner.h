@@ -227,7 +227,8 @@ struct PlannerParams {
   double exit_band = 0.4;
   // if the start pose itself is not allowed, the search starts from the allowed poses whose
   // cell centre is this close to the start (the robot shuffles free: a side-step standing, a
-  // crawl crawling, a turn in place, a crawl move where the posture changes); metres
+  // crawl crawling, a turn in place, a crawl move where the posture changes, close to where
+  // the change puts the origin: kneel_offset back getting up, forward getting down); metres
   double start_escape_radius = 0.08;
 };
 

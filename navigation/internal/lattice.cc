@@ -1309,19 +1309,28 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
     return seeds;
   }
   // shuffle free: any allowed state close by, at the cost of side-stepping, turning and
-  // changing posture there
+  // changing posture there. Changing posture moves the origin kneel_offset along the heading
+  // (forward getting down, back getting up), so such states lie close to where that puts it:
+  // a crawling robot at a table's edge that got up at once, as if standing where it knelt,
+  // came up with its head under the top.
   const Eigen::Vector2d start(start_G.x, start_G.y);
-  const int r = int(std::ceil(p_.start_escape_radius / w.resolution)) + 1;
+  const Eigen::Vector2d kneel =
+      p_.kneel_offset * Eigen::Vector2d(std::cos(start_G.yaw), std::sin(start_G.yaw));
+  const int r = int(std::ceil((p_.start_escape_radius + p_.kneel_offset) / w.resolution)) + 1;
   for (int iy = sy - r; iy <= sy + r; ++iy) {
     for (int ix = sx - r; ix <= sx + r; ++ix) {
       if (!w.Contains(ix, iy)) continue;
-      const double d = (w.CellCenter(ix, iy) - start).norm();
-      if (d > p_.start_escape_radius && !(ix == sx && iy == sy)) continue;
       for (int q = 0; q < 2; ++q) {
+        const bool changes = Posture(q) != posture;
+        const double side = !changes ? 0.0 : Posture(q) == Posture::kCrawling ? 1.0 : -1.0;
+        const Eigen::Vector2d from = start + side * kneel;
+        const double d = (w.CellCenter(ix, iy) - from).norm();
+        int fx = 0, fy = 0;
+        w.CellOf(from.x(), from.y(), &fx, &fy);
+        if (d > p_.start_escape_radius && !(ix == fx && iy == fy)) continue;
         for (int k = 0; k < kNumHeadings; ++k) {
           const int s = StateIndex(ix, iy, k, Posture(q));
           if (!Valid(s)) continue;
-          const bool changes = Posture(q) != posture;
           if (changes && Posture(q) == Posture::kCrawling && !MayGetDown(w.Index(ix, iy))) continue;
           const double angle = std::abs(WrapAngle(HeadingYaw(k) - start_G.yaw));
           const double cost = d * p_.sidestep_factor +
@@ -1332,7 +1341,7 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
           const Move move = changes || (d > kEps && Posture(q) == Posture::kCrawling)
                                 ? Move::kCrawl
                                 : d > kEps ? Move::kSidestep : Move::kTurn;
-          seeds.push_back({s, cost, d, move});
+          seeds.push_back({s, cost, d + (changes ? p_.kneel_offset : 0.0), move});
         }
       }
     }

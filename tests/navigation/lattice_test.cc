@@ -416,6 +416,41 @@ TEST(Lattice, HeadKeepsClearOfTallSolids) {
   }
 }
 
+// A robot whose start pose is not allowed shuffles free; where that changes its posture, the
+// states lie near where the change puts its origin (kneel_offset back getting up, forward
+// getting down), not near where it starts: a robot crawling out from under a table that got up
+// at once, as if it would stand where its knees were, came up with its head under the top.
+TEST(Lattice, StartSeedsThatChangePostureLieWhereTheKneesPutTheRobot) {
+  Fog fog = FlatFog(70, 40, 0.04);
+  FillBox(&fog, 1.00, 0.40, 1.60, 1.20, CellType::kTunnel, 0.0f);  // a table's top over x < 1.6
+  FillBox(&fog, 2.00, 0.76, 2.04, 0.84, CellType::kObstacle, 0.3f);  // a post before the knees
+  PlannerParams p;
+  p.kneel_offset = 0.178;
+  Lattice lattice(fog, {2.6, 0.8}, p);
+  for (const double yaw : {0.0, 0.3}) {
+    // crawling out of the table facing +x; the post is under the crawling footprint
+    const Pose2 start{1.70, 0.80, yaw};
+    const std::vector<Seed> seeds = lattice.StartSeeds(start, Posture::kCrawling);
+    ASSERT_FALSE(seeds.empty());
+    ASSERT_NE(seeds.front().move, Move::kNone) << "the start pose itself should not be allowed";
+    const Eigen::Vector2d up_at =
+        Eigen::Vector2d(start.x, start.y) - p.kneel_offset * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+    int crawling = 0;
+    for (const Seed& seed : seeds) {
+      const Pose2 q = lattice.PoseOf(seed.state);
+      if (lattice.PostureOfState(seed.state) == Posture::kCrawling) {
+        ++crawling;
+        EXPECT_LE(std::hypot(q.x - start.x, q.y - start.y), p.start_escape_radius + 0.03);
+        continue;
+      }
+      // getting up there puts the origin under the top, where no standing state is allowed
+      EXPECT_LE(std::hypot(q.x - up_at.x(), q.y - up_at.y()), p.start_escape_radius + 0.03)
+          << q.x << " " << q.y;
+    }
+    EXPECT_GT(crawling, 0);  // it may crawl free (back, away from the post)
+  }
+}
+
 // Walking backward and side-stepping never bring unknown cells under the footprint; walking
 // forward may.
 TEST(Lattice, BlindMovesStayOnKnownCells) {
