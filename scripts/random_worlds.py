@@ -165,26 +165,6 @@ class Room:
         else:
             self.start = (self.start[0], self.start[1], rng.choice([-120, -90, 90, 150]))
 
-    def turned(self, turn):
-        """The room turned by turn = (degrees, dx, dy) about the origin, then shifted."""
-        deg, dx, dy = turn
-        c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
-
-        def at(p):
-            return [round(c * p[0] - s * p[1] + dx, 3), round(s * p[0] + c * p[1] + dy, 3)]
-
-        def yaw(a):
-            return round((a + deg + 180) % 360 - 180, 2)
-
-        self.start = tuple(at(self.start[:2])) + (yaw(self.start[2]),)
-        self.goal = tuple(at(self.goal))
-        for obj in self.objects:
-            (kind, spec), = obj.items()
-            key = "start" if kind == "stairs" else "center"
-            spec[key] = at(spec[key])
-            spec["yaw"] = yaw(spec.get("yaw", 0))
-        return at, yaw, abs(c), abs(s)
-
     def yaml(self, seed, turn=None):
         L, W, cx = self.length, self.width, self.cx
         walls = [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
@@ -194,25 +174,39 @@ class Room:
                      ("wall_s", cx, -W / 2 + WALL_T / 2, L, WALL_T),
                      ("wall_w", cx - L / 2 + WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T),
                      ("wall_e", cx + L / 2 - WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T))]
+        start, goal, objects = self.start, self.goal, walls + self.objects
         floor, floor_center = [L, W], [cx, 0.0]
-        if turn:
-            at, yaw, c, s = self.turned(turn)
-            for obj in walls:
-                spec = obj["box"]
-                spec["center"] = at(spec["center"])
-                spec["yaw"] = yaw(0)
-            floor = [round(c * L + s * W, 3), round(s * L + c * W, 3)]
+        if turn:  # everything turned by turn = (degrees, dx, dy) about the origin, then shifted
+            deg, dx, dy = turn
+            c, s = math.cos(math.radians(deg)), math.sin(math.radians(deg))
+
+            def at(p):
+                return [round(c * p[0] - s * p[1] + dx, 3), round(s * p[0] + c * p[1] + dy, 3)]
+
+            def yaw(a):
+                return round((a + deg + 180) % 360 - 180, 2)
+
+            start = tuple(at(start[:2])) + (yaw(start[2]),)
+            goal = tuple(at(goal))
+            turned = []
+            for obj in objects:
+                (kind, spec), = obj.items()
+                key = "start" if kind == "stairs" else "center"
+                turned.append({kind: dict(spec, **{key: at(spec[key]),
+                                                   "yaw": yaw(spec.get("yaw", 0))})})
+            objects = turned
+            floor = [round(abs(c) * L + abs(s) * W, 3), round(abs(s) * L + abs(c) * W, 3)]
             floor_center = at([cx, 0.0])
         lines = [f"name: {self.name}",
                  "description: A random walled room (scripts/random_worlds.py).",
                  f"seed: {seed}",
-                 f"robot: {{start: {lst(list(self.start))}}}",
-                 f"goal: {{position: {lst(list(self.goal))}, tolerance: 0.2}}",
+                 f"robot: {{start: {lst(list(start))}}}",
+                 f"goal: {{position: {lst(list(goal))}, tolerance: 0.2}}",
                  "world:",
                  f"  floor: {lst(floor)}",
                  f"  floor_center: {lst(floor_center)}",
                  "  objects:"]
-        for obj in walls + self.objects:
+        for obj in objects:
             (kind, spec), = obj.items()
             lines.append(f"    - {kind}: {flow(spec)}")
         if self.sensor:

@@ -1313,21 +1313,25 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
   // (forward getting down, back getting up), so such states lie close to where that puts it:
   // a crawling robot at a table's edge that got up at once, as if standing where it knelt,
   // came up with its head under the top.
-  const Eigen::Vector2d start(start_G.x, start_G.y);
   const Eigen::Vector2d kneel =
       p_.kneel_offset * Eigen::Vector2d(std::cos(start_G.yaw), std::sin(start_G.yaw));
+  Eigen::Vector2d from[2];  // per posture, where the robot's origin is in it
+  int from_cell[2][2];
+  for (int q = 0; q < 2; ++q) {
+    const double side = Posture(q) == posture ? 0.0 : Posture(q) == Posture::kCrawling ? 1.0 : -1.0;
+    from[q] = Eigen::Vector2d(start_G.x, start_G.y) + side * kneel;
+    w.CellOf(from[q].x(), from[q].y(), &from_cell[q][0], &from_cell[q][1]);
+  }
   const int r = int(std::ceil((p_.start_escape_radius + p_.kneel_offset) / w.resolution)) + 1;
   for (int iy = sy - r; iy <= sy + r; ++iy) {
     for (int ix = sx - r; ix <= sx + r; ++ix) {
       if (!w.Contains(ix, iy)) continue;
       for (int q = 0; q < 2; ++q) {
         const bool changes = Posture(q) != posture;
-        const double side = !changes ? 0.0 : Posture(q) == Posture::kCrawling ? 1.0 : -1.0;
-        const Eigen::Vector2d from = start + side * kneel;
-        const double d = (w.CellCenter(ix, iy) - from).norm();
-        int fx = 0, fy = 0;
-        w.CellOf(from.x(), from.y(), &fx, &fy);
-        if (d > p_.start_escape_radius && !(ix == fx && iy == fy)) continue;
+        const double d = (w.CellCenter(ix, iy) - from[q]).norm();
+        if (d > p_.start_escape_radius && !(ix == from_cell[q][0] && iy == from_cell[q][1])) {
+          continue;
+        }
         for (int k = 0; k < kNumHeadings; ++k) {
           const int s = StateIndex(ix, iy, k, Posture(q));
           if (!Valid(s)) continue;

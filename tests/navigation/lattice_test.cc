@@ -433,8 +433,8 @@ TEST(Lattice, StartSeedsThatChangePostureLieWhereTheKneesPutTheRobot) {
     const std::vector<Seed> seeds = lattice.StartSeeds(start, Posture::kCrawling);
     ASSERT_FALSE(seeds.empty());
     ASSERT_NE(seeds.front().move, Move::kNone) << "the start pose itself should not be allowed";
-    const Eigen::Vector2d up_at =
-        Eigen::Vector2d(start.x, start.y) - p.kneel_offset * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
+    const Eigen::Vector2d up_at = Eigen::Vector2d(start.x, start.y) -
+                                  p.kneel_offset * Eigen::Vector2d(std::cos(yaw), std::sin(yaw));
     int crawling = 0;
     for (const Seed& seed : seeds) {
       const Pose2 q = lattice.PoseOf(seed.state);
