@@ -1117,9 +1117,10 @@ int Lattice::Successors(int s, Successor* out) {
     // getting down: the origin moves forward to the knees
     const int m = kneel_steps_[k];
     const int dx = ix + m * kSteps[k].dx, dy = iy + m * kSteps[k].dy;
-    if (w.Contains(dx, dy) && std::abs(HeightStep(cell, w.Index(dx, dy))) <= p_.h_floor) {
+    const int knees = w.Contains(dx, dy) ? w.Index(dx, dy) : -1;
+    if (knees >= 0 && MayGetDown(knees) && std::abs(HeightStep(cell, knees)) <= p_.h_floor) {
       const int down = StateIndex(dx, dy, k, Posture::kCrawling);
-      if (Valid(down) && MayGetDown(w.Index(dx, dy)) && CrawlFootprintInOpen(w.Index(dx, dy), k)) {
+      if (Valid(down) && CrawlFootprintInOpen(knees, k)) {
         out[n++] = {down, p_.posture_change_cost, m * step_length_[k], Move::kCrawl};
       }
     }
@@ -1332,10 +1333,10 @@ std::vector<Seed> Lattice::StartSeeds(const perception::Pose2& start_G, Posture 
         if (d > p_.start_escape_radius && !(ix == from_cell[q][0] && iy == from_cell[q][1])) {
           continue;
         }
+        if (changes && Posture(q) == Posture::kCrawling && !MayGetDown(w.Index(ix, iy))) continue;
         for (int k = 0; k < kNumHeadings; ++k) {
           const int s = StateIndex(ix, iy, k, Posture(q));
           if (!Valid(s)) continue;
-          if (changes && Posture(q) == Posture::kCrawling && !MayGetDown(w.Index(ix, iy))) continue;
           const double angle = std::abs(WrapAngle(HeadingYaw(k) - start_G.yaw));
           const double cost = d * p_.sidestep_factor +
                               angle * p_.turn_cost_per_rad *
