@@ -247,6 +247,8 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   fog.headroom_seen.assign(fog.type.size(), 0);
   fog.ceiling.assign(fog.type.size(), kNegInf);
   const float h_tunnel = float(params.fog.h_tunnel), h_robot = float(params.fog.h_robot);
+  const int no_floor_frames =
+      state.no_floor_frames.size() == fog.type.size() ? params.no_floor.min_frames : 0;
 
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
@@ -292,6 +294,11 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
       // an unreliable height is no floor information yet: obstacles above it still count
       if (unreliable(i) && t != CellType::kObstacle && t != CellType::kTunnel) {
         t = CellType::kUnknown;
+      }
+      // no floor where the eyes would have seen one (VoidParams): border without a height
+      if (t == CellType::kUnknown && no_floor_frames > 0 && q.f == kNegInf && occupied[i] == 0 &&
+          state.no_floor_frames[i] >= no_floor_frames) {
+        t = CellType::kBorder;
       }
       fog.type[i] = t;
       fog.height[i] = internal::FogHeight(t, q);

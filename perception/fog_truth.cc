@@ -143,7 +143,11 @@ Fog GroundTruthFog(const std::vector<OrientedBox>& solids_G, const GridWindow& w
           any = true;
         }
       }
-      const CellType t = internal::Classify(params, q);
+      CellType t = internal::Classify(params, q);
+      // no solid under any sample: no floor to stand on (the world's floor ends)
+      bool none = true;
+      for (int k = 0; k < ns * ns && none; ++k) none = samples[cell * ns * ns + k].empty();
+      if (none) t = CellType::kBorder;
       fog.type[cell] = t;
       fog.height[cell] = internal::FogHeight(t, q);
     }

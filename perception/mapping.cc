@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <opencv2/imgproc.hpp>
 
 #include "perception/internal/map_update.h"
 
@@ -285,7 +286,8 @@ size_t MapState::MemoryBytes() const {
          marks.capacity() + (crossed.capacity() + floor_layers.capacity()) * sizeof(uint64_t) +
          scratch.capacity() * sizeof(float) +
          floor_local.capacity() * sizeof(float) + floor_votes.capacity() * sizeof(FloorVote) +
-         floor_voted_cells.capacity() * sizeof(int) + floor_frame_marks.capacity();
+         floor_voted_cells.capacity() * sizeof(int) + floor_frame_marks.capacity() +
+         no_floor_frames.capacity() + no_floor_pixels.capacity() * sizeof(uint16_t);
 }
 
 std::vector<LabelledPoint> LabelPoints(const LabelParams& params, const PointImage& points_C,
@@ -418,6 +420,7 @@ void ResetMaps(const MapParams& params, const Pose2& robot_G, MapState* state) {
   state->floor.assign(size_t(state->window.NumCells()), kNegInf);
   state->floor_var.assign(size_t(state->window.NumCells()), 0.0f);
   state->obstacle_range.assign(size_t(state->window.NumCells()), kInf);
+  state->no_floor_frames.assign(size_t(state->window.NumCells()), 0);
   state->marks.assign(cells3, 0);
   state->crossed.assign(size_t(state->window.NumCells()), 0);
   state->scratch.assign(cells3, 0.0f);
@@ -442,6 +445,7 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
   std::vector<float> floor_next(s.floor.size(), kNegInf);
   std::vector<float> var_next(s.floor.size(), 0.0f);
   std::vector<float> range_next(s.floor.size(), kInf);
+  std::vector<uint8_t> no_floor_next(s.floor.size(), 0);
   const int x_begin = std::max(0, -dx), x_end = std::min(nx, nx - dx);
   for (int iy = std::max(0, -dy); iy < std::min(ny, ny - dy); ++iy) {
     if (x_begin >= x_end) break;
@@ -452,18 +456,115 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state) 
     std::copy_n(s.floor.begin() + from, len, floor_next.begin() + to);
     std::copy_n(s.floor_var.begin() + from, len, var_next.begin() + to);
     std::copy_n(s.obstacle_range.begin() + from, len, range_next.begin() + to);
+    std::copy_n(s.no_floor_frames.begin() + from, len, no_floor_next.begin() + to);
   }
   s.log_odds.swap(s.scratch);
   s.floor.swap(floor_next);
   s.floor_var.swap(var_next);
   s.obstacle_range.swap(range_next);
+  s.no_floor_frames.swap(no_floor_next);
   s.window = next;
 }
+
+Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image) {
+  Image<uint8_t> out(image.width, image.height, 0);
+  if (image.empty()) return out;
+  cv::Mat1b grey(image.height, image.width);
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      const Rgb& c = image.at(u, v);
+      grey(v, u) = uint8_t((299 * c.r + 587 * c.g + 114 * c.b + 500) / 1000);
+    }
+  }
+  const int k = std::max(1, params.texture_window);
+  const cv::Mat kernel = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k));
+  cv::Mat1b hi, lo;
+  cv::dilate(grey, hi, kernel, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+  cv::erode(grey, lo, kernel, cv::Point(-1, -1), 1, cv::BORDER_REPLICATE);
+  for (int v = 0; v < image.height; ++v) {
+    for (int u = 0; u < image.width; ++u) {
+      if (hi(v, u) - lo(v, u) <= params.max_contrast) out.at(u, v) = 255;
+    }
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImage& points_C,
+                                       const Image<uint8_t>& textureless,
+                                       const CameraIntrinsics& K, const Eigen::Isometry3d& X_GC,
+                                       double floor_z) {
+  std::vector<Eigen::Vector3f> rays;
+  if (params.min_frames <= 0 || points_C.width == 0 || points_C.height == 0) return rays;
+  Check(textureless.width == points_C.width && textureless.height == points_C.height,
+        "EmptyRays: texture mask and point image differ in size");
+  cv::Mat1b empty(points_C.height, points_C.width);
+  for (int v = 0; v < points_C.height; ++v) {
+    for (int u = 0; u < points_C.width; ++u) {
+      empty(v, u) = !PointImage::Valid(points_C.at(u, v)) && textureless.at(u, v) ? 255 : 0;
+    }
+  }
+  // only regions a min_width_px square fits in (an opening)
+  const int k = std::max(1, params.min_width_px);
+  cv::morphologyEx(empty, empty, cv::MORPH_OPEN,
+                   cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));
+  const Eigen::Matrix3f R = X_GC.linear().cast<float>();
+  const Eigen::Vector3f t = X_GC.translation().cast<float>();
+  const float tolerance = float(params.floor_tolerance);
+  for (int u = 0; u < points_C.width; ++u) {
+    // up the column from the bottom row: an empty pixel counts where the nearest point below it
+    // lies on the floor (the floor runs up to the emptiness, as at a drop)
+    bool floor_below = false;
+    for (int v = points_C.height - 1; v >= 0; --v) {
+      const Eigen::Vector3f& p_C = points_C.at(u, v);
+      if (PointImage::Valid(p_C)) {
+        floor_below = std::abs((R * p_C + t).z() - float(floor_z)) <= tolerance;
+        continue;
+      }
+      if (empty(v, u) == 0 || !floor_below) continue;
+      const Eigen::Vector3f d_C(float((u - K.cx) / K.fx), float((v - K.cy) / K.fy), 1.0f);
+      const Eigen::Vector3f d_G = R * d_C;
+      if (d_G.z() < 0.0f) rays.push_back(d_G);
+    }
+  }
+  return rays;
+}
+
+namespace {
+
+// VoidParams: this frame's empty rays to the floor plane, one frame of evidence per cell they
+// meet often enough
+void UpdateNoFloor(const VoidParams& params, const MapInput& input, MapState* state) {
+  MapState& s = *state;
+  if (params.min_frames <= 0 || input.empty_rays_G.empty()) return;
+  const GridWindow& w = s.window;
+  s.no_floor_pixels.assign(size_t(w.NumCells()), 0);
+  const Eigen::Vector3d& c = input.p_GC;
+  const double drop = input.floor_z - c.z();  // negative: the camera is above the floor
+  if (!(drop < 0)) return;
+  for (const Eigen::Vector3f& d : input.empty_rays_G) {
+    const double t = drop / double(d.z());
+    const double x = c.x() + t * double(d.x()), y = c.y() + t * double(d.y());
+    if (std::hypot(x - c.x(), y - c.y()) > params.range) continue;
+    const int ix = int(std::floor(x / w.resolution)) - w.origin_ix;
+    const int iy = int(std::floor(y / w.resolution)) - w.origin_iy;
+    if (!w.Contains(ix, iy)) continue;
+    uint16_t& n = s.no_floor_pixels[size_t(w.Index(ix, iy))];
+    if (n < 0xffff) ++n;
+  }
+  for (size_t i = 0; i < s.no_floor_pixels.size(); ++i) {
+    if (s.no_floor_pixels[i] >= params.min_pixels && s.no_floor_frames[i] < 255) {
+      ++s.no_floor_frames[i];
+    }
+  }
+}
+
+}  // namespace
 
 void UpdateMaps(const MapParams& params, const MapInput& input, MapState* state) {
   ScrollMaps(params, input.robot_G, state);
   internal::UpdateOccupancy(params.grid, params.floor.verify_tolerance, input, state);
   internal::UpdateFloorMap(params, input, state);
+  UpdateNoFloor(params.no_floor, input, state);
 }
 
 }  // namespace fognav::perception

@@ -302,10 +302,32 @@ struct FogParams {
   int truth_samples = 4;  // ground truth samples truth_samples^2 points per cell
 };
 
+// Extension: where the floor ends (the edge of the world's floor, a hole whose bottom lies out
+// of sight) the eyes see nothing where a floor would be, and the paper's maps, which only hold
+// what was seen, keep such cells unknown: cells the planner may cross. Each frame, the pixels
+// with neither range nor texture (the image within texture_window pixels around them varies by
+// at most max_contrast grey levels: not a stereo mismatch or occlusion shadow on a textured
+// surface) that look down and lie in a region of such pixels at least min_width_px wide are
+// followed to the plane of the floor under the robot; a cell where at least min_pixels of them
+// land no farther than `range` (along the floor from the camera, metres: the textured floor
+// gives range well beyond it) gets one frame of evidence. In the FOG a cell with no floor
+// height, no occupied layer and at least min_frames frames of evidence has no floor: border
+// without a height, which the planner never stands on. min_frames 0 turns it off.
+struct VoidParams {
+  double range = 1.5;
+  int texture_window = 5;
+  int max_contrast = 4;
+  int min_width_px = 3;
+  double floor_tolerance = 0.03;  // metres
+  int min_pixels = 2;
+  int min_frames = 2;
+};
+
 struct MapParams {
   OccupancyParams grid;
   FloorParams floor;
   FogParams fog;
+  VoidParams no_floor;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -351,6 +373,10 @@ struct MapState {
   std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
   // per 2D cell: the nearest a ray crossed it this frame (only while overrule_ratio > 0)
   std::vector<float> free_range;
+  // Per 2D cell: frames in which rays without range met the floor plane there (VoidParams),
+  // up to 255.
+  std::vector<uint8_t> no_floor_frames;
+  std::vector<uint16_t> no_floor_pixels;  // scratch: this frame's rays per cell
 
   bool Empty() const { return log_odds.empty(); }
   // Occupancy probability of local cell (ix, iy, iz) (must be inside).
@@ -371,7 +397,25 @@ struct MapInput {
   Pose2 robot_G;            // odometry pose of the robot in the grid frame (centres the window)
   Eigen::Vector3d p_GC = Eigen::Vector3d::Zero();  // camera origin in the grid frame
   std::vector<LabelledPoint> points;               // from LabelPoints; NaN points are skipped
+  // Directions (grid frame, any length) of the pixels that saw nothing (EmptyRays) and the
+  // height of the floor under the robot they are followed to (VoidParams).
+  std::vector<Eigen::Vector3f> empty_rays_G;
+  double floor_z = 0;
 };
+
+// Pixels of `image` around which (texture_window square) the grey level varies by at most
+// max_contrast: 255, else 0 (VoidParams).
+Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image);
+
+// The directions, in the grid frame, of the pixels of `points_C` without a point and
+// `textureless` (the same size) that lie in a region of such pixels at least
+// params.min_width_px wide, look down and have a floor point (within floor_tolerance of
+// floor_z) as the nearest point below them in their column (VoidParams); K is the intrinsics
+// of `points_C`, X_GC the camera's pose in the grid frame.
+std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImage& points_C,
+                                       const Image<uint8_t>& textureless,
+                                       const CameraIntrinsics& K, const Eigen::Isometry3d& X_GC,
+                                       double floor_z);
 
 // Window of the given size centred on the robot: the robot's cell is (size_x/2, size_y/2).
 GridWindow CenteredWindow(const OccupancyParams& params, const Pose2& robot_G);
@@ -416,7 +460,8 @@ Fog ComputeFog(const MapParams& params, const MapState& state);
 // h_f is the highest sample floor (as the floor map keeps the highest floor); obstacle and
 // ceiling heights are the highest top and lowest bottom (clamped to h_f) over all samples of the
 // solid parts whose top exceeds h_f + obstacle_margin; eq. (24) and classify then apply as on the
-// estimated maps.
+// estimated maps. A cell with no solid under any sample has no floor to stand on: border
+// without a height, as VoidParams makes it on the estimated maps.
 Fog GroundTruthFog(const std::vector<OrientedBox>& solids_G, const GridWindow& window,
                    const FogParams& params);
 

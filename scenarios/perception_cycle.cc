@@ -116,6 +116,14 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   label.keep_column_rims_above = floor_z + params.rim_keep_height;
   input.points = perception::LabelPoints(label, result.points, result.planes, X_GC, body_G,
                                          rims.empty() ? nullptr : &rims);
+  perception::Image<uint8_t> textureless =
+      perception::TexturelessPixels(params.map.no_floor, view.left);
+  if (params.subsample) textureless = perception::Subsample2x(textureless);
+  input.empty_rays_G = perception::EmptyRays(
+      params.map.no_floor, result.points, textureless,
+      params.subsample ? perception::Subsample2x(view.intrinsics) : view.intrinsics,
+      X_GC, floor_z);
+  input.floor_z = floor_z;
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);
   result.labelled_G = std::move(input.points);

@@ -1,0 +1,138 @@
+// Where the floor ends (VoidParams): empty rays, the no-floor FOG cells and their ground truth.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "perception/internal/map_synthetic.h"
+#include "perception/mapping.h"
+
+namespace fognav::perception {
+namespace {
+
+using internal::AlignedBox;
+using internal::LookAt;
+using internal::MakeIntrinsics;
+using internal::RenderBoxes;
+
+// A floor that ends at x = 0.8 (nothing beyond it), seen from the standing eye height.
+const std::vector<OrientedBox> kFloorEndingAhead = {AlignedBox(-1.0, 0.8, -1.0, 1.0, -0.01, 0.0)};
+const Eigen::Isometry3d kEye = LookAt({0.0, 0.0, 0.5}, {1.0, 0.0, 0.0});
+
+Image<uint8_t> All(int width, int height, uint8_t value) { return {width, height, value}; }
+
+// where ray d from the camera meets the floor plane z = 0 (x, y)
+Eigen::Vector2d OnFloor(const Eigen::Isometry3d& X_GC, const Eigen::Vector3f& d) {
+  const Eigen::Vector3d c = X_GC.translation();
+  const double t = -c.z() / double(d.z());
+  return {c.x() + t * d.x(), c.y() + t * d.y()};
+}
+
+TEST(NoFloor, EmptyRaysAreThoseBeyondTheEdgeOfTheFloor) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const internal::SyntheticFrame frame = RenderBoxes(kFloorEndingAhead, kEye, K);
+  const VoidParams params;
+  const std::vector<Eigen::Vector3f> rays =
+      EmptyRays(params, frame.points_C, All(88, 72, 255), K, kEye, 0.0);
+  ASSERT_GT(rays.size(), 100u);
+  for (const Eigen::Vector3f& d : rays) {
+    ASSERT_LT(d.z(), 0.0f);
+    const Eigen::Vector2d p = OnFloor(kEye, d);
+    EXPECT_TRUE(p.x() > 0.8 - 1e-6 || std::abs(p.y()) > 1.0 - 1e-6)  // never on the floor
+        << p.transpose();
+  }
+  // stereo's holes on textured surfaces are no emptiness
+  EXPECT_TRUE(EmptyRays(params, frame.points_C, All(88, 72, 0), K, kEye, 0.0).empty());
+  // nor is what lies beyond a top (here the same surface seen 0.2 m above the robot's floor)
+  EXPECT_TRUE(EmptyRays(params, frame.points_C, All(88, 72, 255), K, kEye, -0.2).empty());
+  // nor a gap narrower than min_width_px: a hole two columns wide in a floor seen below it
+  internal::SyntheticFrame holed = RenderBoxes({AlignedBox(-1.0, 3.0, -1.0, 1.0, -0.01, 0.0)},
+                                               kEye, K);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int v = 20; v < 50; ++v) {
+    for (int u = 40; u < 42; ++u) holed.points_C.at(u, v) = Eigen::Vector3f::Constant(nan);
+  }
+  for (const Eigen::Vector3f& d :
+       EmptyRays(params, holed.points_C, All(88, 72, 255), K, kEye, 0.0)) {
+    const Eigen::Vector2d p = OnFloor(kEye, d);
+    EXPECT_TRUE(p.x() > 3.0 - 1e-6 || std::abs(p.y()) > 1.0 - 1e-6)  // only beyond its edges
+        << p.transpose();
+  }
+}
+
+TEST(NoFloor, CellsBeyondTheEdgeBecomeBorderWithoutHeightAsTheTruthHasThem) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const MapParams params;
+  MapState state;
+  std::vector<int> void_cells_after;
+  for (int frame_no = 0; frame_no < 2; ++frame_no) {
+    const internal::SyntheticFrame frame = RenderBoxes(kFloorEndingAhead, kEye, K);
+    MapInput in;
+    in.p_GC = kEye.translation();
+    in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, kEye, {});
+    in.empty_rays_G =
+        EmptyRays(params.no_floor, frame.points_C, All(88, 72, 255), K, kEye, 0.0);
+    in.floor_z = 0.0;
+    UpdateMaps(params, in, &state);
+    const Fog fog = ComputeFog(params, state);
+    int n = 0;
+    for (size_t i = 0; i < fog.type.size(); ++i) {
+      n += fog.type[i] == CellType::kBorder && fog.height[i] == -INFINITY;
+    }
+    void_cells_after.push_back(n);
+  }
+  EXPECT_EQ(void_cells_after[0], 0);  // one frame is not enough (min_frames 2)
+  EXPECT_GT(void_cells_after[1], 50);
+
+  const Fog fog = ComputeFog(params, state);
+  const Fog truth = GroundTruthFog(kFloorEndingAhead, fog.window, params.fog);
+  int seen_floor = 0;
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      const double x = (fog.window.origin_ix + ix + 0.5) * fog.window.resolution;
+      const double y = (fog.window.origin_iy + iy + 0.5) * fog.window.resolution;
+      if (x > 0.8 || std::abs(y) > 1.0) {
+        EXPECT_EQ(truth.TypeAt(ix, iy), CellType::kBorder) << x << " " << y;
+        EXPECT_EQ(truth.HeightAt(ix, iy), -INFINITY);
+      }
+      if (fog.TypeAt(ix, iy) == CellType::kBorder) {
+        EXPECT_GT(x, 0.8) << "a no-floor cell on the floor at " << x << " " << y;
+        EXPECT_LE(std::hypot(x, y), params.no_floor.range + fog.window.resolution);
+      }
+      if (fog.TypeAt(ix, iy) == CellType::kFloor) {
+        ++seen_floor;
+        EXPECT_LT(x, 0.8);
+      }
+    }
+  }
+  EXPECT_GT(seen_floor, 50);
+
+  // min_frames 0 turns it off
+  MapParams off = params;
+  off.no_floor.min_frames = 0;
+  const Fog without = ComputeFog(off, state);
+  for (size_t i = 0; i < without.type.size(); ++i) {
+    EXPECT_FALSE(without.type[i] == CellType::kBorder && without.height[i] == -INFINITY);
+  }
+}
+
+TEST(NoFloor, TexturelessPixelsAreThoseOfAnEvenImage) {
+  RgbImage image(20, 10, Rgb{0, 0, 0});
+  for (int v = 0; v < 10; ++v) {
+    for (int u = 10; u < 20; ++u) {
+      const uint8_t g = (u + v) % 2 ? 200 : 40;  // a checkerboard on the right half
+      image.at(u, v) = Rgb{g, g, g};
+    }
+  }
+  VoidParams params;  // 5 x 5 window
+  const Image<uint8_t> mask = TexturelessPixels(params, image);
+  for (int v = 0; v < 10; ++v) {
+    for (int u = 0; u < 20; ++u) {
+      EXPECT_EQ(mask.at(u, v), u < 8 ? 255 : 0) << u << " " << v;  // two columns short of it
+    }
+  }
+}
+
+}  // namespace
+}  // namespace fognav::perception
