@@ -611,6 +611,31 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     return std::hypot(t.x - scenario.goal.x(), t.y - scenario.goal.y());
   };
 
+  // what the robot stands on (soles; knees and hands crawling) beyond the edge of the floor: it
+  // would fall. "right sole at (x, y)", or empty.
+  auto SupportOffFloor = [&]() -> std::string {
+    using sim::Side;
+    std::vector<std::pair<std::string, int>> supports;
+    for (const Side s : {Side::kLeft, Side::kRight}) {
+      const std::string side = s == Side::kLeft ? "left " : "right ";
+      if (controller.mode() == sim::Mode::kCrawling) {
+        supports.push_back({side + "knee", humanoid.knee_geom(s)});
+        supports.push_back({side + "hand", humanoid.hand_geom(s)});
+      } else {
+        supports.push_back({side + "sole", humanoid.sole_geom(s)});
+      }
+    }
+    for (const auto& [name, geom] : supports) {
+      const Eigen::Vector2d p(d->geom_xpos[3 * geom], d->geom_xpos[3 * geom + 1]);
+      if (!OverFloor(scenario, p)) {
+        char where[64];
+        std::snprintf(where, sizeof(where), " at (%.2f, %.2f)", p.x(), p.y());
+        return name + where + " beyond the floor's edge";
+      }
+    }
+    return "";
+  };
+
   // the closed loop
   std::string failure;
   std::string failure_detail;  // why: the planner's no-path reason, the colliding geoms
@@ -780,6 +805,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       failure = "collision";
       const sim::Collision& c = controller.collisions().front();
       failure_detail = c.robot_name + " hit " + c.world_name;
+      break;
+    }
+    if (const std::string off = SupportOffFloor(); !off.empty()) {
+      failure = "off_floor";
+      failure_detail = off;
       break;
     }
     if (cycle >= scenario.max_cycles || controller.steps() >= scenario.max_steps) {

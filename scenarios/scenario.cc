@@ -250,8 +250,8 @@ const std::vector<std::string>& ActionNames() {
 }
 
 const std::vector<std::string>& FailureNames() {
-  static const std::vector<std::string> kNames = {"no_path", "collision", "timeout",
-                                                  "goal_not_reached"};
+  static const std::vector<std::string> kNames = {"no_path", "collision", "off_floor",
+                                                  "timeout", "goal_not_reached"};
   return kNames;
 }
 
@@ -381,7 +381,8 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
       const auto& known = FailureNames();
       if (std::find(known.begin(), known.end(), failure) == known.end()) {
         r.Fail(expect["failure"], "expect.failure",
-               "unknown failure '" + failure + "' (expected no_path, collision, timeout or goal_not_reached)");
+               "unknown failure '" + failure +
+                   "' (expected no_path, collision, off_floor, timeout or goal_not_reached)");
       }
       s.expect.failure = failure;
       if (s.expect.reach_goal.value_or(false)) {
@@ -400,6 +401,11 @@ Scenario LoadScenario(const std::string& path) {
   std::stringstream text;
   text << file.rdbuf();
   return ParseScenario(text.str(), path);
+}
+
+bool OverFloor(const Scenario& scenario, const Eigen::Vector2d& p_W) {
+  const Eigen::Vector2d offset = (p_W - scenario.floor_center).cwiseAbs();
+  return offset.x() <= scenario.floor_size.x() / 2 && offset.y() <= scenario.floor_size.y() / 2;
 }
 
 std::vector<Solid> WorldSolids(const Scenario& scenario) {

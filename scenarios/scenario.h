@@ -120,6 +120,9 @@ struct Solid {
 // The exact geometry of the scenario's objects.
 std::vector<Solid> WorldSolids(const Scenario& scenario);
 
+// Whether the world point p_W (x, y) lies over the world's floor (its edges included).
+bool OverFloor(const Scenario& scenario, const Eigen::Vector2d& p_W);
+
 // One line describing the scenario ("stairs_and_table: 14 objects, goal 4.4 m away, ...").
 std::string Summary(const Scenario& scenario);
 

@@ -152,10 +152,29 @@ INSTANTIATE_TEST_SUITE_P(
                  "course.yaml:2: sensor.depth: expected stereo or ideal, got 'lidar'"},
         BadInput{"name: unit", "name: unit\nexpect: {actions_used: [walk, fly]}",
                  "course.yaml:2: expect.actions_used[1]: unknown action 'fly'"},
+        BadInput{"name: unit", "name: unit\nexpect: {failure: fell}",
+                 "course.yaml:2: expect.failure: unknown failure 'fell' (expected no_path, "
+                 "collision, off_floor, timeout or goal_not_reached)"},
         BadInput{"name: unit", "name: unit\nlimits: {max_cycles: 0}",
                  "course.yaml:2: limits.max_cycles: expected an integer from 1"},
         // not YAML at all
         BadInput{"name: unit", "name: [unit", "course.yaml:"}));
+
+// where the robot may stand: over the floor rectangle, edges included (floor 6 x 2 at (2, 0))
+TEST(Scenario, OverFloorIsTheFloorRectangle) {
+  const Scenario s = ParseScenario(kValid, "course.yaml");
+  EXPECT_TRUE(OverFloor(s, {2.0, 0.0}));
+  EXPECT_TRUE(OverFloor(s, {-1.0, 1.0}));
+  EXPECT_TRUE(OverFloor(s, {4.99, -0.99}));
+  EXPECT_FALSE(OverFloor(s, {-1.01, 0.0}));
+  EXPECT_FALSE(OverFloor(s, {5.01, 0.0}));
+  EXPECT_FALSE(OverFloor(s, {2.0, 1.01}));
+  EXPECT_FALSE(OverFloor(s, {2.0, -1.01}));
+  EXPECT_EQ(ParseScenario(Replace(kValid, "name: unit", "name: unit\nexpect: {failure: off_floor}"),
+                          "course.yaml")
+                .expect.failure,
+            "off_floor");
+}
 
 TEST(Scenario, UnreadableFileNamesThePath) {
   try {
