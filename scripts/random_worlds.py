@@ -2,7 +2,7 @@
 """Writes random walled rooms as fognav scenario files, for robustness sweeps.
 
 Usage: scripts/random_worlds.py OUT_DIR [--count N] [--seed S] [--variants] [--dense]
-                              [--prefix NAME]
+                              [--turn] [--open] [--prefix NAME]
 
 Each room is walled (0.3 m walls), the robot starts at its west end and the goal lies near its
 east end. Between them stand a few of: blocks (low enough to step round or high, some turned),
@@ -14,7 +14,9 @@ With --variants every other room also gets a wider camera (55-60 degrees, 320x24
 noise or a start turned away from the goal. With --turn each room (the same rooms as without
 it) is turned as a whole by a random angle about the origin and shifted by a random part of a
 4 cm map cell, so that its walls and objects lie at angles to the map's cells and cross them
-anywhere; the floor grows to the turned floor's bounding box. Only the standard library is used.
+anywhere; the floor grows to the turned floor's bounding box. With --open the rooms (the same
+rooms) have no walls: the floor ends where they stood, with nothing beyond, and dividers end at
+its edges. Only the standard library is used.
 """
 import argparse
 import math
@@ -165,9 +167,9 @@ class Room:
         else:
             self.start = (self.start[0], self.start[1], rng.choice([-120, -90, 90, 150]))
 
-    def yaml(self, seed, turn=None):
+    def yaml(self, seed, turn=None, open_floor=False):
         L, W, cx = self.length, self.width, self.cx
-        walls = [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
+        walls = [] if open_floor else [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
                           "size": [round(sx, 3), round(sy, 3), WALL_H]}}
                  for name, x, y, sx, sy in (
                      ("wall_n", cx, W / 2 - WALL_T / 2, L, WALL_T),
@@ -198,7 +200,8 @@ class Room:
             floor = [round(abs(c) * L + abs(s) * W, 3), round(abs(s) * L + abs(c) * W, 3)]
             floor_center = at([cx, 0.0])
         lines = [f"name: {self.name}",
-                 "description: A random walled room (scripts/random_worlds.py).",
+                 "description: A random " + ("room without walls" if open_floor else "walled room")
+                 + " (scripts/random_worlds.py).",
                  f"seed: {seed}",
                  f"robot: {{start: {lst(list(start))}}}",
                  f"goal: {{position: {lst(list(goal))}, tolerance: 0.2}}",
@@ -230,6 +233,8 @@ def main():
                         help="3-7 objects 0.18 m apart, divider openings of 0.25-0.5 m")
     parser.add_argument("--turn", action="store_true",
                         help="turn each room by a random angle and shift it by part of a cell")
+    parser.add_argument("--open", action="store_true",
+                        help="no walls: the floor ends where they stood")
     args = parser.parse_args()
     if args.count < 1:
         sys.exit("random_worlds: --count must be at least 1")
@@ -244,7 +249,7 @@ def main():
             turn = (round(t.uniform(-180, 180), 1), round(t.uniform(0, 0.04), 3),
                     round(t.uniform(0, 0.04), 3))
         with open(path, "w") as f:
-            f.write(room.yaml(args.seed * 1000 + i, turn))
+            f.write(room.yaml(args.seed * 1000 + i, turn, args.open))
     print(f"random_worlds: {args.count} rooms in {args.out_dir}")
 
 

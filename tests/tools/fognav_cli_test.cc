@@ -144,11 +144,11 @@ TEST(FognavCli, RenderWritesTheViews) {
 TEST(FognavCli, RandomWorldsAreValidScenarios) {
   if (std::system("python3 --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
   const auto tmp = std::filesystem::temp_directory_path();
-  auto generate = [&](const std::string& dir, int seed) {
+  auto generate = [&](const std::string& dir, int seed, const std::string& flags = "") {
     std::filesystem::remove_all(tmp / dir);
     const std::string command = "python3 scripts/random_worlds.py " + (tmp / dir).string() +
                                 " --count 12 --variants --dense --seed " + std::to_string(seed) +
-                                " > /dev/null";
+                                flags + " > /dev/null";
     return std::system(command.c_str());
   };
   ASSERT_EQ(generate("fognav_rooms_a", 7), 0);
@@ -169,6 +169,19 @@ TEST(FognavCli, RandomWorldsAreValidScenarios) {
   }
   EXPECT_EQ(files, 12);
   EXPECT_EQ(differing, 12);
+
+  // --open: the same rooms without their walls, turned as well with --turn
+  ASSERT_EQ(generate("fognav_rooms_open", 7, " --open --turn"), 0);
+  files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(tmp / "fognav_rooms_open")) {
+    ++files;
+    const Outcome o = RunFognav("validate " + entry.path().string());
+    EXPECT_EQ(o.exit_code, 0) << entry.path() << ": " << o.output;
+    EXPECT_EQ(read(entry.path()).find("wall_"), std::string::npos) << entry.path();
+    EXPECT_NE(read(tmp / "fognav_rooms_a" / entry.path().filename()).find("wall_n"),
+              std::string::npos);
+  }
+  EXPECT_EQ(files, 12);
 }
 
 }  // namespace
