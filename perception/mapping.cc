@@ -512,8 +512,10 @@ std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImag
   const float tolerance = float(params.floor_tolerance);
   for (int u = 0; u < points_C.width; ++u) {
     // up the column from the bottom row: an empty pixel counts where the nearest point below it
-    // lies on the floor (the floor runs up to the emptiness, as at a drop)
-    bool floor_below = false;
+    // lies on the floor (the floor runs up to the emptiness, as at a drop); in a column that is
+    // empty from top to bottom every pixel counts (the eyes look beyond the drop)
+    bool floor_below = true;
+    for (int v = 0; v < points_C.height && floor_below; ++v) floor_below = empty(v, u) != 0;
     for (int v = points_C.height - 1; v >= 0; --v) {
       const Eigen::Vector3f& p_C = points_C.at(u, v);
       if (PointImage::Valid(p_C)) {

@@ -307,12 +307,15 @@ struct FogParams {
 // what was seen, keep such cells unknown: cells the planner may cross. Each frame, the pixels
 // with neither range nor texture (the image within texture_window pixels around them varies by
 // at most max_contrast grey levels: not a stereo mismatch or occlusion shadow on a textured
-// surface) that look down and lie in a region of such pixels at least min_width_px wide are
-// followed to the plane of the floor under the robot; a cell where at least min_pixels of them
-// land no farther than `range` (along the floor from the camera, metres: the textured floor
-// gives range well beyond it) gets one frame of evidence. In the FOG a cell with no floor
-// height, no occupied layer and at least min_frames frames of evidence has no floor: border
-// without a height, which the planner never stands on. min_frames 0 turns it off.
+// surface) that look down, lie in a region of such pixels at least min_width_px wide, and
+// either have a floor point as the nearest point below them in their image column (the floor
+// runs up to the emptiness; not the sky above a wall) or lie in a column empty from top to
+// bottom (the eyes look beyond the drop) are followed to the plane of the floor under the
+// robot; a cell where at least min_pixels of them land no farther than `range` (along the floor
+// from the camera, metres: the textured floor gives range well beyond it) gets one frame of
+// evidence. In the FOG a cell with no floor height, no occupied layer and at least min_frames
+// frames of evidence has no floor: border without a height, which the planner never stands on.
+// min_frames 0 turns it off.
 struct VoidParams {
   double range = 1.5;
   int texture_window = 5;
@@ -410,8 +413,8 @@ Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image
 // The directions, in the grid frame, of the pixels of `points_C` without a point and
 // `textureless` (the same size) that lie in a region of such pixels at least
 // params.min_width_px wide, look down and have a floor point (within floor_tolerance of
-// floor_z) as the nearest point below them in their column (VoidParams); K is the intrinsics
-// of `points_C`, X_GC the camera's pose in the grid frame.
+// floor_z) as the nearest point below them in their column or lie in a column without points
+// (VoidParams); K is the intrinsics of `points_C`, X_GC the camera's pose in the grid frame.
 std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImage& points_C,
                                        const Image<uint8_t>& textureless,
                                        const CameraIntrinsics& K, const Eigen::Isometry3d& X_GC,

@@ -61,6 +61,28 @@ TEST(NoFloor, EmptyRaysAreThoseBeyondTheEdgeOfTheFloor) {
   }
 }
 
+// At the floor's edge the eyes may look beyond it with no floor in view: every empty column
+// counts then, but not empty pixels under a near wall's points (stereo's holes in its texture)
+TEST(NoFloor, AViewOfNothingCountsButHolesBelowAWallDoNot) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const VoidParams params;
+  const std::vector<OrientedBox> edge_below = {AlignedBox(-1.0, 0.1, -1.0, 1.0, -0.01, 0.0)};
+  const internal::SyntheticFrame beyond = RenderBoxes(edge_below, kEye, K);
+  const std::vector<Eigen::Vector3f> rays =
+      EmptyRays(params, beyond.points_C, All(88, 72, 255), K, kEye, 0.0);
+  EXPECT_GT(rays.size(), size_t(88 * 36));  // at least the lower half of the view
+  for (const Eigen::Vector3f& d : rays) EXPECT_GT(OnFloor(kEye, d).x(), 0.1);
+
+  std::vector<OrientedBox> wall = kFloorEndingAhead;
+  wall.push_back(AlignedBox(0.3, 0.4, -1.0, 1.0, 0.0, 1.0));  // taller than the eyes, 0.3 m ahead
+  internal::SyntheticFrame holed = RenderBoxes(wall, kEye, K);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int v = 50; v < 72; ++v) {
+    for (int u = 0; u < 88; ++u) holed.points_C.at(u, v) = Eigen::Vector3f::Constant(nan);
+  }
+  EXPECT_TRUE(EmptyRays(params, holed.points_C, All(88, 72, 255), K, kEye, 0.0).empty());
+}
+
 TEST(NoFloor, CellsBeyondTheEdgeBecomeBorderWithoutHeightAsTheTruthHasThem) {
   const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
   const MapParams params;
