@@ -613,7 +613,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
 
   // what the robot stands on (soles; knees and hands crawling) beyond the edge of the floor: it
   // would fall. "right sole at (x, y)", or empty.
-  auto SupportOffFloor = [&]() -> std::string {
+  auto support_off_floor = [&]() -> std::string {
     using sim::Side;
     std::vector<std::pair<std::string, int>> supports;
     for (const Side s : {Side::kLeft, Side::kRight}) {
@@ -800,16 +800,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     ++explorations;
   };
   while (true) {
+    if (const std::string off = support_off_floor(); !off.empty()) {
+      failure = "off_floor";
+      failure_detail = off;
+      break;
+    }
     if (true_goal_distance() <= scenario.goal_tolerance) break;
     if (scenario.expect.no_collision.value_or(false) && !controller.collisions().empty()) {
       failure = "collision";
       const sim::Collision& c = controller.collisions().front();
       failure_detail = c.robot_name + " hit " + c.world_name;
-      break;
-    }
-    if (const std::string off = SupportOffFloor(); !off.empty()) {
-      failure = "off_floor";
-      failure_detail = off;
       break;
     }
     if (cycle >= scenario.max_cycles || controller.steps() >= scenario.max_steps) {
