@@ -169,13 +169,15 @@ class Room:
 
     def yaml(self, seed, turn=None, open_floor=False):
         L, W, cx = self.length, self.width, self.cx
-        walls = [] if open_floor else [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
+        walls = [{"box": {"name": name, "center": [round(x, 3), round(y, 3)],
                           "size": [round(sx, 3), round(sy, 3), WALL_H]}}
                  for name, x, y, sx, sy in (
                      ("wall_n", cx, W / 2 - WALL_T / 2, L, WALL_T),
                      ("wall_s", cx, -W / 2 + WALL_T / 2, L, WALL_T),
                      ("wall_w", cx - L / 2 + WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T),
                      ("wall_e", cx + L / 2 - WALL_T / 2, 0.0, WALL_T, W - 2 * WALL_T))]
+        if open_floor:
+            walls = []
         start, goal, objects = self.start, self.goal, walls + self.objects
         floor, floor_center = [L, W], [cx, 0.0]
         if turn:  # everything turned by turn = (degrees, dx, dy) about the origin, then shifted
@@ -200,8 +202,8 @@ class Room:
             floor = [round(abs(c) * L + abs(s) * W, 3), round(abs(s) * L + abs(c) * W, 3)]
             floor_center = at([cx, 0.0])
         lines = [f"name: {self.name}",
-                 "description: A random " + ("room without walls" if open_floor else "walled room")
-                 + " (scripts/random_worlds.py).",
+                 f"description: A random {'room without walls' if open_floor else 'walled room'}"
+                 " (scripts/random_worlds.py).",
                  f"seed: {seed}",
                  f"robot: {{start: {lst(list(start))}}}",
                  f"goal: {{position: {lst(list(goal))}, tolerance: 0.2}}",
