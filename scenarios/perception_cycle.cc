@@ -78,10 +78,11 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
     truth = perception::Subsample2x(truth);
     truth_depth = perception::Subsample2x(truth_depth);
   }
+  // the intrinsics of result.points
+  const perception::CameraIntrinsics K_points =
+      params.subsample ? perception::Subsample2x(view.intrinsics) : view.intrinsics;
   result.stereo_ms = MillisecondsSince(start);
-  result.stereo = perception::ScoreStereo(
-      result.points, truth_depth,
-      params.subsample ? perception::Subsample2x(view.intrinsics) : view.intrinsics);
+  result.stereo = perception::ScoreStereo(result.points, truth_depth, K_points);
 
   // planes, scored against the surfaces the renderer saw
   start = Clock::now();
@@ -121,8 +122,7 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   if (params.subsample) textureless = perception::Subsample2x(textureless);
   input.empty_rays_G = perception::EmptyRays(
       params.map.no_floor, result.points, textureless,
-      params.subsample ? perception::Subsample2x(view.intrinsics) : view.intrinsics,
-      X_GC, floor_z);
+      K_points, X_GC, floor_z);
   input.floor_z = floor_z;
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);

@@ -214,14 +214,10 @@ double DistanceToFootprint(const Footprint& f, const Eigen::Vector2d& p) {
 }
 
 void Validate(const Reader& r, const YAML::Node& root, const Scenario& s) {
-  Eigen::Vector2d lo = s.floor_center - s.floor_size / 2, hi = s.floor_center + s.floor_size / 2;
-  auto on_floor = [&](const Eigen::Vector2d& p) {
-    return (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
-  };
-  if (!on_floor({s.start.x, s.start.y})) {
+  if (!OverFloor(s, {s.start.x, s.start.y})) {
     r.Fail(root["robot"]["start"], "robot.start", "the start is off the floor");
   }
-  if (!on_floor(s.goal)) r.Fail(root["goal"]["position"], "goal.position", "the goal is off the floor");
+  if (!OverFloor(s, s.goal)) r.Fail(root["goal"]["position"], "goal.position", "the goal is off the floor");
 
   std::set<std::string> names;
   const YAML::Node objects = root["world"]["objects"];
@@ -404,8 +400,9 @@ Scenario LoadScenario(const std::string& path) {
 }
 
 bool OverFloor(const Scenario& scenario, const Eigen::Vector2d& p_W) {
-  const Eigen::Vector2d offset = (p_W - scenario.floor_center).cwiseAbs();
-  return offset.x() <= scenario.floor_size.x() / 2 && offset.y() <= scenario.floor_size.y() / 2;
+  const Eigen::Vector2d lo = scenario.floor_center - scenario.floor_size / 2;
+  const Eigen::Vector2d hi = scenario.floor_center + scenario.floor_size / 2;
+  return (p_W.array() >= lo.array()).all() && (p_W.array() <= hi.array()).all();
 }
 
 std::vector<Solid> WorldSolids(const Scenario& scenario) {
