@@ -26,6 +26,7 @@ float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double 
 
 namespace {
 
+// bits of MapState::floor_frame_marks besides kFloorVoted
 constexpr uint8_t kConfirmed = 1, kLowerSeen = 2;
 constexpr int kNoSlotYet = -2;  // VoteSlot not asked yet (it answers -1 for no slot left)
 
@@ -136,6 +137,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
       if (std::abs(u - 0.5f) < 0.25f && std::abs(w - 0.5f) < 0.25f) ++v.middle[last_slot];
       continue;
     }
+    s.floor_frame_marks[size_t(cell)] |= kFloorVoted;
     float& f = s.floor[size_t(cell)];
     s.floor_var[size_t(cell)] = 0;
     if (lp.h < f - gate) continue;  // a lower surface under the floor already known
@@ -162,6 +164,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
     // edge cell's higher floor
     const float f = s.floor[size_t(cell)];
     uint8_t& marks = s.floor_frame_marks[size_t(cell)];
+    marks |= kFloorVoted;
     for (int k = 0; k < MapState::kFloorVotes && v.count[k] > 0; ++k) {
       if (std::abs(v.h[k] - f) <= gate) {
         marks |= kConfirmed;
@@ -179,7 +182,7 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t cell = size_t(w.Index(ix, iy));
-      if (s.floor_frame_marks[cell] != kLowerSeen) continue;
+      if ((s.floor_frame_marks[cell] & (kConfirmed | kLowerSeen)) != kLowerSeen) continue;
       bool confirmed_near = false;
       for (int jy = std::max(0, iy - 1); jy <= std::min(w.size_y - 1, iy + 1); ++jy) {
         for (int jx = std::max(0, ix - 1); jx <= std::min(w.size_x - 1, ix + 1); ++jx) {

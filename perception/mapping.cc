@@ -489,10 +489,38 @@ Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image
   return out;
 }
 
+namespace {
+
+// Whether the segment from p to p + d meets box b grown by `margin` (slab test in the box frame).
+bool SegmentMeetsBox(const OrientedBox& b, double margin, const Eigen::Vector3d& p,
+                     const Eigen::Vector3d& d) {
+  const Eigen::Matrix3d R_BF = b.X_FB.linear().transpose();
+  const Eigen::Vector3d o = R_BF * (p - b.X_FB.translation()), v = R_BF * d;
+  // the box the eyes look out of (the head's) hides nothing
+  if ((o.cwiseAbs() - b.half_size).maxCoeff() <= margin) return false;
+  double t0 = 0, t1 = 1;
+  for (int a = 0; a < 3; ++a) {
+    const double h = b.half_size[a] + margin;
+    if (std::abs(v[a]) < 1e-12) {
+      if (std::abs(o[a]) > h) return false;
+      continue;
+    }
+    double lo = (-h - o[a]) / v[a], hi = (h - o[a]) / v[a];
+    if (lo > hi) std::swap(lo, hi);
+    t0 = std::max(t0, lo);
+    t1 = std::min(t1, hi);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImage& points_C,
                                        const Image<uint8_t>& textureless,
                                        const CameraIntrinsics& K, const Eigen::Isometry3d& X_GC,
-                                       double floor_z) {
+                                       double floor_z, const std::vector<OrientedBox>& body_G,
+                                       double body_margin) {
   std::vector<Eigen::Vector3f> rays;
   if (params.min_frames <= 0 || points_C.width == 0 || points_C.height == 0) return rays;
   Check(textureless.width == points_C.width && textureless.height == points_C.height,
@@ -525,7 +553,16 @@ std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImag
       if (empty(v, u) == 0 || !floor_below) continue;
       const Eigen::Vector3f d_C(float((u - K.cx) / K.fx), float((v - K.cy) / K.fy), 1.0f);
       const Eigen::Vector3f d_G = R * d_C;
-      if (d_G.z() < 0.0f) rays.push_back(d_G);
+      if (d_G.z() >= 0.0f) continue;
+      // the robot's own body, untextured and without range, hides the floor along this ray
+      const Eigen::Vector3d to_floor =
+          d_G.cast<double>() * ((floor_z - X_GC.translation().z()) / double(d_G.z()));
+      if (std::any_of(body_G.begin(), body_G.end(), [&](const OrientedBox& b) {
+            return SegmentMeetsBox(b, body_margin, X_GC.translation(), to_floor);
+          })) {
+        continue;
+      }
+      rays.push_back(d_G);
     }
   }
   return rays;
@@ -534,8 +571,9 @@ std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImag
 namespace {
 
 // VoidParams: this frame's empty rays to the floor plane, one frame of evidence per cell they
-// meet often enough
-void UpdateNoFloor(const VoidParams& params, const MapInput& input, MapState* state) {
+// meet often enough; floor heights they contradict are dropped (VoidParams::drop_floor)
+void UpdateNoFloor(const MapParams& map_params, const MapInput& input, MapState* state) {
+  const VoidParams& params = map_params.no_floor;
   MapState& s = *state;
   if (params.min_frames <= 0 || input.empty_rays_G.empty()) return;
   const GridWindow& w = s.window;
@@ -545,6 +583,7 @@ void UpdateNoFloor(const VoidParams& params, const MapInput& input, MapState* st
   if (!(drop < 0)) return;
   for (const Eigen::Vector3f& d : input.empty_rays_G) {
     const double t = drop / double(d.z());
+    if (t * double(d.norm()) < params.min_distance) continue;
     const double x = c.x() + t * double(d.x()), y = c.y() + t * double(d.y());
     if (std::hypot(x - c.x(), y - c.y()) > params.range) continue;
     const int ix = int(std::floor(x / w.resolution)) - w.origin_ix;
@@ -553,9 +592,28 @@ void UpdateNoFloor(const VoidParams& params, const MapInput& input, MapState* st
     uint16_t& n = s.no_floor_pixels[size_t(w.Index(ix, iy))];
     if (n < 0xffff) ++n;
   }
+  constexpr float kNegInf = -std::numeric_limits<float>::infinity();
   for (size_t i = 0; i < s.no_floor_pixels.size(); ++i) {
-    if (s.no_floor_pixels[i] >= params.min_pixels && s.no_floor_frames[i] < 255) {
-      ++s.no_floor_frames[i];
+    if (s.no_floor_pixels[i] < params.min_pixels) continue;
+    const bool has_floor = s.floor[i] != kNegInf;
+    // a frame whose floor points fell in the cell does not contradict its floor
+    if (params.drop_floor && has_floor &&
+        (s.floor_frame_marks[i] & internal::kFloorVoted) != 0) {
+      continue;
+    }
+    if (s.no_floor_frames[i] < 255) ++s.no_floor_frames[i];
+    if (params.drop_floor && has_floor && s.no_floor_frames[i] >= params.min_frames &&
+        std::abs(s.floor[i] - input.floor_z) <= params.floor_tolerance) {
+      // eq. (20) would drop the height once the grid no longer holds it: the layers that
+      // hold it lose their evidence (P 0.5 at most)
+      int lo, hi;
+      internal::LayersNear(s, s.floor[i], map_params.floor.verify_tolerance, &lo, &hi);
+      float* column = s.log_odds.data() + i * size_t(s.size_z);
+      for (int iz = std::max(lo, 0); iz <= std::min(hi, s.size_z - 1); ++iz) {
+        column[iz] = std::min(column[iz], 0.0f);
+      }
+      s.floor[i] = kNegInf;
+      s.floor_var[i] = 0;
     }
   }
 }
@@ -566,7 +624,7 @@ void UpdateMaps(const MapParams& params, const MapInput& input, MapState* state)
   ScrollMaps(params, input.robot_G, state);
   internal::UpdateOccupancy(params.grid, params.floor.verify_tolerance, input, state);
   internal::UpdateFloorMap(params, input, state);
-  UpdateNoFloor(params.no_floor, input, state);
+  UpdateNoFloor(params, input, state);
 }
 
 }  // namespace fognav::perception

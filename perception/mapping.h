@@ -316,8 +316,21 @@ struct FogParams {
 // evidence. In the FOG a cell with no floor height, no occupied layer and at least min_frames
 // frames of evidence has no floor: border without a height, which the planner never stands on.
 // min_frames 0 turns it off.
+// Rays that meet the robot's own body before the floor (EmptyRays' body_G: it is untextured and
+// may have no range) and rays that meet the floor nearer than min_distance to the eyes do not
+// count: within 0.4 m one blob of the floor's texture fills the texture window (the crawling
+// eyes, 0.14 m above a platform, saw its blobs 20 px wide).
+// If drop_floor is set, the rays also take back a floor height: stereo smears a floor's edge
+// seen from afar by a cell or two beyond it, and the paper's maps keep a height while the grid
+// holds it (eq. 20), so the cells beyond the world's floor that the smeared points reached stayed
+// floor however near the robot came (a robot walked off the floor on them). A height on the
+// level of the floor under the robot (within floor_tolerance) whose cell the rays meet in
+// min_frames frames in which no floor point fell in it (frames before it had a height count
+// too) is dropped, and the grid's layers that held it lose their evidence.
 struct VoidParams {
   double range = 1.5;
+  double min_distance = 0.45;  // metres, from the camera to where the ray meets the floor
+  bool drop_floor = true;
   int texture_window = 5;
   int max_contrast = 4;
   int min_width_px = 3;
@@ -373,7 +386,8 @@ struct MapState {
   };
   std::vector<FloorVote> floor_votes;
   std::vector<int> floor_voted_cells;  // cells with votes this frame, in the order first voted
-  std::vector<uint8_t> floor_frame_marks;  // per cell: its height confirmed / a lower one seen
+  // per cell: its height confirmed / a lower one seen / floor points fell in it, this frame
+  std::vector<uint8_t> floor_frame_marks;
   // per 2D cell: the nearest a ray crossed it this frame (only while overrule_ratio > 0)
   std::vector<float> free_range;
   // Per 2D cell: frames in which rays without range met the floor plane there (VoidParams),
@@ -413,12 +427,16 @@ Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image
 // The directions, in the grid frame, of the pixels of `points_C` without a point and
 // `textureless` (the same size) that lie in a region of such pixels at least
 // params.min_width_px wide, look down and have a floor point (within floor_tolerance of
-// floor_z) as the nearest point below them in their column or lie in a column without points
-// (VoidParams); K is the intrinsics of `points_C`, X_GC the camera's pose in the grid frame.
+// floor_z) as the nearest point below them in their column or lie in a column without points,
+// and whose way to the floor plane meets none of the robot's body boxes `body_G` grown by
+// body_margin, but for one the camera lies in (VoidParams); K is the intrinsics of `points_C`,
+// X_GC the camera's pose in the grid frame.
 std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImage& points_C,
                                        const Image<uint8_t>& textureless,
                                        const CameraIntrinsics& K, const Eigen::Isometry3d& X_GC,
-                                       double floor_z);
+                                       double floor_z,
+                                       const std::vector<OrientedBox>& body_G = {},
+                                       double body_margin = 0);
 
 // Window of the given size centred on the robot: the robot's cell is (size_x/2, size_y/2).
 GridWindow CenteredWindow(const OccupancyParams& params, const Pose2& robot_G);

@@ -122,7 +122,7 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   if (params.subsample) textureless = perception::Subsample2x(textureless);
   input.empty_rays_G = perception::EmptyRays(
       params.map.no_floor, result.points, textureless,
-      K_points, X_GC, floor_z);
+      K_points, X_GC, floor_z, body_G, label.self_filter_margin);
   input.floor_z = floor_z;
   perception::UpdateMaps(params.map, input, maps);
   result.mapping_ms = MillisecondsSince(start);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <Eigen/Eigenvalues>
 
@@ -51,6 +52,9 @@ void LayersNear(const MapState& state, double z, double tol, int* lo, int* hi);
 // Highest occupancy log-odds in column (ix, iy) over the layers touching [z - tol, z + tol];
 // -infinity if none of them lies in the grid.
 float ColumnLogOddsNear(const MapState& state, int ix, int iy, double z, double tol);
+
+// Bit of MapState::floor_frame_marks: floor points of the current frame fell in the cell.
+inline constexpr uint8_t kFloorVoted = 4;
 
 // Verifies the floor map against the grid (eq. 20), then inserts the floor points (eq. 19, 21).
 void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* state);

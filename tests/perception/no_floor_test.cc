@@ -1,6 +1,7 @@
 // Where the floor ends (VoidParams): empty rays, the no-floor FOG cells and their ground truth.
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -137,6 +138,126 @@ TEST(NoFloor, CellsBeyondTheEdgeBecomeBorderWithoutHeightAsTheTruthHasThem) {
   for (size_t i = 0; i < without.type.size(); ++i) {
     EXPECT_FALSE(without.type[i] == CellType::kBorder && without.height[i] == -INFINITY);
   }
+}
+
+// The robot's own body may be untextured and without range: it hides the floor behind it. The
+// head box the eyes look out of hides nothing.
+TEST(NoFloor, TheRobotsBodyHidesTheFloorButTheHeadAroundTheEyesDoesNot) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const VoidParams params;
+  const std::vector<OrientedBox> edge_below = {AlignedBox(-1.0, 0.1, -1.0, 1.0, -0.01, 0.0)};
+  const internal::SyntheticFrame beyond = RenderBoxes(edge_below, kEye, K);
+  const size_t all = EmptyRays(params, beyond.points_C, All(88, 72, 255), K, kEye, 0.0).size();
+  ASSERT_GT(all, size_t(88 * 36));
+  const OrientedBox head = AlignedBox(-0.05, 0.05, -0.05, 0.05, 0.45, 0.55);
+  EXPECT_EQ(EmptyRays(params, beyond.points_C, All(88, 72, 255), K, kEye, 0.0, {head}, 0.02)
+                .size(),
+            all);
+  // an arm held out under the eyes, left of the view's middle (+y)
+  const OrientedBox arm = AlignedBox(0.2, 0.4, 0.0, 0.3, 0.2, 0.25);
+  const std::vector<Eigen::Vector3f> rays =
+      EmptyRays(params, beyond.points_C, All(88, 72, 255), K, kEye, 0.0, {head, arm}, 0.02);
+  EXPECT_LT(rays.size(), all - 88 * 5);
+  for (const Eigen::Vector3f& d : rays) {
+    // no kept ray passes through the arm grown by the margin: at its top it is off the arm
+    const double t = (0.25 + 0.02 - 0.5) / double(d.z());
+    const Eigen::Vector3d p = kEye.translation() + t * d.cast<double>();
+    EXPECT_FALSE(p.x() > 0.2 - 0.02 + 1e-6 && p.x() < 0.4 + 0.02 - 1e-6 &&
+                 p.y() > -0.02 + 1e-6 && p.y() < 0.32 - 1e-6)
+        << p.transpose();
+  }
+}
+
+// Empty rays along the floor plane from a view of `boxes` from `eye` (floor at z = 0).
+MapInput ViewOf(const std::vector<OrientedBox>& boxes, const Eigen::Isometry3d& eye,
+                const MapParams& params) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const internal::SyntheticFrame frame = RenderBoxes(boxes, eye, K);
+  MapInput in;
+  in.p_GC = eye.translation();
+  in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, eye, {});
+  in.empty_rays_G = EmptyRays(params.no_floor, frame.points_C, All(88, 72, 255), K, eye, 0.0);
+  in.floor_z = 0.0;
+  return in;
+}
+
+// Within min_distance of the eyes a blob of the floor's texture may fill the texture window:
+// empty rays that meet the floor nearer do not count.
+TEST(NoFloor, RaysMeetingTheFloorNearTheEyesDoNotCount) {
+  MapParams params;
+  params.no_floor.min_distance = 0.8;
+  // eyes 0.3 m up and the floor ending 0.3 m ahead: the rays meet the floor from 0.42 m on
+  const Eigen::Isometry3d low = LookAt({0.0, 0.0, 0.3}, {0.6, 0.0, 0.0});
+  const std::vector<OrientedBox> floor = {AlignedBox(-1.0, 0.3, -1.0, 1.0, -0.01, 0.0)};
+  MapState state;
+  for (int frame_no = 0; frame_no < 2; ++frame_no) {
+    UpdateMaps(params, ViewOf(floor, low, params), &state);
+  }
+  const Fog fog = ComputeFog(params, state);
+  int no_floor = 0;
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      if (fog.TypeAt(ix, iy) != CellType::kBorder) continue;
+      ++no_floor;
+      const Eigen::Vector2d c = fog.window.CellCenter(ix, iy);
+      // a cell reached from at least 0.8 m: its far corner lies at least that far
+      EXPECT_GT(std::hypot(std::hypot(std::abs(c.x()) + 0.02, std::abs(c.y()) + 0.02), 0.3),
+                0.8)
+          << c.transpose();
+    }
+  }
+  EXPECT_GT(no_floor, 20);
+}
+
+// Stereo smears a far floor edge beyond it; nearer views whose rays see nothing there take the
+// smeared heights back (VoidParams::drop_floor), but not the heights of a top.
+TEST(NoFloor, EmptyRaysTakeBackAFloorSmearedBeyondItsEdge) {
+  MapParams params;
+  const Eigen::Isometry3d far = LookAt({-0.6, 0.0, 0.5}, {1.0, 0.0, 0.0});
+  // the far view: the floor seen up to 0.88 m right of the middle (y < 0), and a 0.3 m top
+  // at 0.5-0.8 m left of it; the near eyes see y within +-0.3 m at x = 0.8 m
+  const std::vector<OrientedBox> smeared = {AlignedBox(-1.0, 0.88, -0.3, 0.0, -0.01, 0.0),
+                                            AlignedBox(-1.0, 0.5, 0.0, 0.3, -0.01, 0.0),
+                                            AlignedBox(0.5, 0.8, 0.0, 0.3, 0.29, 0.3)};
+  // the true world: the floor ends at 0.8 m (beside the top at 0.5 m)
+  const std::vector<OrientedBox> truth = {AlignedBox(-1.0, 0.8, -0.3, 0.0, -0.01, 0.0),
+                                          AlignedBox(-1.0, 0.5, 0.0, 0.3, -0.01, 0.0),
+                                          AlignedBox(0.5, 0.8, 0.0, 0.3, 0.29, 0.3)};
+  auto types_after = [&](const MapParams& p) {
+    MapState state;
+    UpdateMaps(p, ViewOf(smeared, far, p), &state);
+    for (int frame_no = 0; frame_no < 2; ++frame_no) UpdateMaps(p, ViewOf(truth, kEye, p), &state);
+    return std::make_pair(ComputeFog(p, state), state);
+  };
+  const auto [fog, state] = types_after(params);
+  MapParams kept = params;
+  kept.no_floor.drop_floor = false;
+  const auto [fog_kept, state_kept] = types_after(kept);
+
+  int dropped = 0, smeared_cells = 0, tops = 0, kept_floor = 0;
+  for (int iy = 0; iy < fog.window.size_y; ++iy) {
+    for (int ix = 0; ix < fog.window.size_x; ++ix) {
+      const Eigen::Vector2d c = fog.window.CellCenter(ix, iy);
+      const size_t i = size_t(fog.window.Index(ix, iy));
+      if (!std::isfinite(state_kept.floor[i])) continue;
+      if (c.y() > 0.02 && c.y() < 0.28 && c.x() > 0.52 && c.x() < 0.78) {
+        ++tops;  // the top keeps its height, with or without the rule
+        EXPECT_NEAR(state.floor[i], 0.3, 0.01) << c.transpose();
+      } else if (c.y() < -0.02 && c.y() > -0.28 && c.x() > 0.8 && c.x() < 0.88) {
+        ++smeared_cells;  // floor in the far view only
+        EXPECT_EQ(fog_kept.TypeAt(ix, iy), CellType::kFloor) << c.transpose();
+        EXPECT_FALSE(std::isfinite(state.floor[i])) << c.transpose();
+        dropped += fog.TypeAt(ix, iy) == CellType::kBorder && fog.height[i] == -INFINITY;
+      } else if (c.y() < -0.02 && c.y() > -0.28 && c.x() > 0.4 && c.x() < 0.76) {
+        ++kept_floor;  // the floor the near views see keeps its height
+        EXPECT_NEAR(state.floor[i], 0.0, 0.01) << c.transpose();
+      }
+    }
+  }
+  EXPECT_GT(tops, 20);
+  EXPECT_GT(kept_floor, 20);
+  EXPECT_GT(smeared_cells, 6);
+  EXPECT_EQ(dropped, smeared_cells);
 }
 
 TEST(NoFloor, TexturelessPixelsAreThoseOfAnEvenImage) {
