@@ -391,7 +391,7 @@ struct MapState {
   // per 2D cell: the nearest a ray crossed it this frame (only while overrule_ratio > 0)
   std::vector<float> free_range;
   // Per 2D cell: frames in which rays without range met the floor plane there (VoidParams),
-  // up to 255.
+  // up to 255; with drop_floor, not those in which floor points fell in a cell with a height.
   std::vector<uint8_t> no_floor_frames;
   std::vector<uint16_t> no_floor_pixels;  // scratch: this frame's rays per cell
 
