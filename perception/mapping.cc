@@ -491,27 +491,45 @@ Image<uint8_t> TexturelessPixels(const VoidParams& params, const RgbImage& image
 
 namespace {
 
-// Whether the segment from p to p + d meets box b grown by `margin` (slab test in the box frame).
-bool SegmentMeetsBox(const OrientedBox& b, double margin, const Eigen::Vector3d& p,
-                     const Eigen::Vector3d& d) {
-  const Eigen::Matrix3d R_BF = b.X_FB.linear().transpose();
-  const Eigen::Vector3d o = R_BF * (p - b.X_FB.translation()), v = R_BF * d;
-  // the box the eyes look out of (the head's) hides nothing
-  if ((o.cwiseAbs() - b.half_size).maxCoeff() <= margin) return false;
-  double t0 = 0, t1 = 1;
-  for (int a = 0; a < 3; ++a) {
-    const double h = b.half_size[a] + margin;
-    if (std::abs(v[a]) < 1e-12) {
-      if (std::abs(o[a]) > h) return false;
-      continue;
+// A box of the robot's body with the camera's position in its frame, for EmptyRays' segment
+// test (what the rays share is computed once).
+struct BodyBox {
+  Eigen::Matrix3d R_BG;  // grid frame to box frame
+  Eigen::Vector3d o;     // the camera in the box frame
+  Eigen::Vector3d half;  // half sizes grown by the margin
+
+  // Whether the segment from the camera to the camera + d (grid frame) meets the box (slab test).
+  bool Meets(const Eigen::Vector3d& d_G) const {
+    const Eigen::Vector3d v = R_BG * d_G;
+    double t0 = 0, t1 = 1;
+    for (int a = 0; a < 3; ++a) {
+      if (std::abs(v[a]) < 1e-12) {
+        if (std::abs(o[a]) > half[a]) return false;
+        continue;
+      }
+      double lo = (-half[a] - o[a]) / v[a], hi = (half[a] - o[a]) / v[a];
+      if (lo > hi) std::swap(lo, hi);
+      t0 = std::max(t0, lo);
+      t1 = std::min(t1, hi);
+      if (t0 > t1) return false;
     }
-    double lo = (-h - o[a]) / v[a], hi = (h - o[a]) / v[a];
-    if (lo > hi) std::swap(lo, hi);
-    t0 = std::max(t0, lo);
-    t1 = std::min(t1, hi);
-    if (t0 > t1) return false;
+    return true;
   }
-  return true;
+};
+
+// The boxes of `body_G` grown by `margin` that may hide something from a camera at p_GC: all but
+// the one the eyes look out of (the head's).
+std::vector<BodyBox> HidingBoxes(const std::vector<OrientedBox>& body_G, double margin,
+                                 const Eigen::Vector3d& p_GC) {
+  std::vector<BodyBox> boxes;
+  for (const OrientedBox& b : body_G) {
+    BodyBox box;
+    box.R_BG = b.X_FB.linear().transpose();
+    box.o = box.R_BG * (p_GC - b.X_FB.translation());
+    box.half = b.half_size.array() + margin;
+    if ((box.o.cwiseAbs() - box.half).maxCoeff() > 0) boxes.push_back(box);
+  }
+  return boxes;
 }
 
 }  // namespace
@@ -538,6 +556,7 @@ std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImag
   const Eigen::Matrix3f R = X_GC.linear().cast<float>();
   const Eigen::Vector3f t = X_GC.translation().cast<float>();
   const float tolerance = float(params.floor_tolerance);
+  const std::vector<BodyBox> hiding = HidingBoxes(body_G, body_margin, X_GC.translation());
   for (int u = 0; u < points_C.width; ++u) {
     // up the column from the bottom row: an empty pixel counts where the nearest point below it
     // lies on the floor (the floor runs up to the emptiness, as at a drop); in a column that is
@@ -557,9 +576,8 @@ std::vector<Eigen::Vector3f> EmptyRays(const VoidParams& params, const PointImag
       // the robot's own body, untextured and without range, hides the floor along this ray
       const Eigen::Vector3d to_floor =
           d_G.cast<double>() * ((floor_z - X_GC.translation().z()) / double(d_G.z()));
-      if (std::any_of(body_G.begin(), body_G.end(), [&](const OrientedBox& b) {
-            return SegmentMeetsBox(b, body_margin, X_GC.translation(), to_floor);
-          })) {
+      if (std::any_of(hiding.begin(), hiding.end(),
+                      [&](const BodyBox& b) { return b.Meets(to_floor); })) {
         continue;
       }
       rays.push_back(d_G);

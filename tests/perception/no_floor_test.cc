@@ -30,6 +30,20 @@ Eigen::Vector2d OnFloor(const Eigen::Isometry3d& X_GC, const Eigen::Vector3f& d)
   return {c.x() + t * d.x(), c.y() + t * d.y()};
 }
 
+// The map input of one view of `boxes` from `eye`: its labelled points and its empty rays to
+// the floor plane z = 0.
+MapInput ViewOf(const std::vector<OrientedBox>& boxes, const Eigen::Isometry3d& eye,
+                const MapParams& params) {
+  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
+  const internal::SyntheticFrame frame = RenderBoxes(boxes, eye, K);
+  MapInput in;
+  in.p_GC = eye.translation();
+  in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, eye, {});
+  in.empty_rays_G = EmptyRays(params.no_floor, frame.points_C, All(88, 72, 255), K, eye, 0.0);
+  in.floor_z = 0.0;
+  return in;
+}
+
 TEST(NoFloor, EmptyRaysAreThoseBeyondTheEdgeOfTheFloor) {
   const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
   const internal::SyntheticFrame frame = RenderBoxes(kFloorEndingAhead, kEye, K);
@@ -85,19 +99,11 @@ TEST(NoFloor, AViewOfNothingCountsButHolesBelowAWallDoNot) {
 }
 
 TEST(NoFloor, CellsBeyondTheEdgeBecomeBorderWithoutHeightAsTheTruthHasThem) {
-  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
   const MapParams params;
   MapState state;
   std::vector<int> void_cells_after;
   for (int frame_no = 0; frame_no < 2; ++frame_no) {
-    const internal::SyntheticFrame frame = RenderBoxes(kFloorEndingAhead, kEye, K);
-    MapInput in;
-    in.p_GC = kEye.translation();
-    in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, kEye, {});
-    in.empty_rays_G =
-        EmptyRays(params.no_floor, frame.points_C, All(88, 72, 255), K, kEye, 0.0);
-    in.floor_z = 0.0;
-    UpdateMaps(params, in, &state);
+    UpdateMaps(params, ViewOf(kFloorEndingAhead, kEye, params), &state);
     const Fog fog = ComputeFog(params, state);
     int n = 0;
     for (size_t i = 0; i < fog.type.size(); ++i) {
@@ -166,19 +172,6 @@ TEST(NoFloor, TheRobotsBodyHidesTheFloorButTheHeadAroundTheEyesDoesNot) {
                  p.y() > -0.02 + 1e-6 && p.y() < 0.32 - 1e-6)
         << p.transpose();
   }
-}
-
-// Empty rays along the floor plane from a view of `boxes` from `eye` (floor at z = 0).
-MapInput ViewOf(const std::vector<OrientedBox>& boxes, const Eigen::Isometry3d& eye,
-                const MapParams& params) {
-  const CameraIntrinsics K = MakeIntrinsics(88, 72, 45.0);
-  const internal::SyntheticFrame frame = RenderBoxes(boxes, eye, K);
-  MapInput in;
-  in.p_GC = eye.translation();
-  in.points = LabelPoints(LabelParams{}, frame.points_C, frame.planes, eye, {});
-  in.empty_rays_G = EmptyRays(params.no_floor, frame.points_C, All(88, 72, 255), K, eye, 0.0);
-  in.floor_z = 0.0;
-  return in;
 }
 
 // Within min_distance of the eyes a blob of the floor's texture may fill the texture window:
