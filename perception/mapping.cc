@@ -604,8 +604,8 @@ void UpdateNoFloor(const MapParams& map_params, const MapInput& input, MapState*
     if (t * double(d.norm()) < params.min_distance) continue;
     const double x = c.x() + t * double(d.x()), y = c.y() + t * double(d.y());
     if (std::hypot(x - c.x(), y - c.y()) > params.range) continue;
-    const int ix = int(std::floor(x / w.resolution)) - w.origin_ix;
-    const int iy = int(std::floor(y / w.resolution)) - w.origin_iy;
+    int ix, iy;
+    w.CellOf(x, y, &ix, &iy);
     if (!w.Contains(ix, iy)) continue;
     uint16_t& n = s.no_floor_pixels[size_t(w.Index(ix, iy))];
     if (n < 0xffff) ++n;
