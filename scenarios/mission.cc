@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -236,6 +237,38 @@ double PanToward(const nav::PlanResult& plan, size_t first, const perception::Po
 // beside a floor or stairs cell on another level (more than h_floor off): the toes may reach
 // past a step's edge there, and a cell marked on the robot's level would move the edge under
 // the landing of the step down (the plan stepped back and forth before it).
+// The global grid cells (indices at `resolution`) whose centres the standing soles cover at
+// `robot`: the footprint's depth along the heading by the shoulders' width across, without the
+// planner's margin (Fog::walked).
+void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot, double resolution,
+                    std::set<std::pair<int, int>>* walked) {
+  const double along = 0.5 * p.depth, across = 0.5 * p.shoulder_width;
+  const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
+  const double reach = std::hypot(along, across);
+  const int ix0 = int(std::floor((robot.x - reach) / resolution));
+  const int iy0 = int(std::floor((robot.y - reach) / resolution));
+  const int ix1 = int(std::floor((robot.x + reach) / resolution));
+  const int iy1 = int(std::floor((robot.y + reach) / resolution));
+  for (int iy = iy0; iy <= iy1; ++iy) {
+    for (int ix = ix0; ix <= ix1; ++ix) {
+      const double dx = (ix + 0.5) * resolution - robot.x, dy = (iy + 0.5) * resolution - robot.y;
+      if (std::abs(c * dx + s * dy) <= along && std::abs(-s * dx + c * dy) <= across) {
+        walked->insert({ix, iy});
+      }
+    }
+  }
+}
+
+// Fog::walked for the window from the global cells the soles covered
+void MarkWalked(const std::set<std::pair<int, int>>& walked, perception::Fog* fog) {
+  const perception::GridWindow& w = fog->window;
+  fog->walked.assign(size_t(w.NumCells()), 0);
+  for (const auto& [gx, gy] : walked) {
+    const int ix = gx - w.origin_ix, iy = gy - w.origin_iy;
+    if (w.Contains(ix, iy)) fog->walked[size_t(w.Index(ix, iy))] = 1;
+  }
+}
+
 void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& robot, double floor_z,
                         perception::Fog* fog) {
   const perception::GridWindow& w = fog->window;
@@ -492,6 +525,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::string current_move = "look";
   int cycle = 0;
   int last_step_logged = 0;
+  std::set<std::pair<int, int>> walked;  // global cells the standing soles covered (Fog::walked)
 
   // the video's frames: the chase camera now, the last head image, the last plan picture
   perception::RgbImage video_plan_picture;
@@ -529,6 +563,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%s\n", controller.steps(),
                   controller.ticks(), t.x, t.y, t.yaw, o.x, o.y, o.yaw, current_move.c_str());
     trajectory << row;
+    if (controller.mode() == sim::Mode::kStanding) {
+      AddWalkedCells(planner_params, o, perception_params.map.grid.resolution, &walked);
+    }
   };
   auto run_controller = [&]() {
     auto start = Clock::now();
@@ -760,6 +797,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     });
   };
 
+  AddWalkedCells(planner_params, ToPerception(controller.believed_pose()),
+                 perception_params.map.grid.resolution, &walked);
   look_around();
   perception::Pose2 looked_at = ToPerception(controller.believed_pose());
   bool just_looked = true;
@@ -826,6 +865,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     if (controller.mode() == sim::Mode::kStanding) {
       MarkFloorUnderFeet(planner_params, believed, believed_floor_z, &fog);
     }
+    MarkWalked(walked, &fog);
     auto start = Clock::now();
     const nav::Posture posture = controller.mode() == sim::Mode::kCrawling
                                      ? nav::Posture::kCrawling

@@ -427,7 +427,7 @@ void Lattice::ComputePermissions() {
   }
   SquaredDistanceTransform(tunnel, w.size_x, w.size_y, &tunnel_d2_);
   std::vector<uint8_t> unknown(n);
-  for (size_t i = 0; i < n; ++i) unknown[i] = fog_.type[i] == CellType::kUnknown;
+  for (size_t i = 0; i < n; ++i) unknown[i] = UnseenUnwalked(i);
   SquaredDistanceTransform(unknown, w.size_x, w.size_y, &unknown_d2_);
   SquaredDistanceTransform(ceiling, w.size_x, w.size_y, &zone_d2_);
   const double zone_cells = p_.crawl_zone_radius / w.resolution;
@@ -1267,9 +1267,7 @@ bool Lattice::BlindIntoUnknown(int ix, int iy, int q, int k, int b) const {
   }
   for (const CellStep& o : blind_lead_[q][k][b]) {
     const int nx = ix + o.dx, ny = iy + o.dy;
-    if (!w.Contains(nx, ny) || fog_.type[size_t(w.Index(nx, ny))] == CellType::kUnknown) {
-      return true;
-    }
+    if (!w.Contains(nx, ny) || UnseenUnwalked(size_t(w.Index(nx, ny)))) return true;
   }
   return false;
 }

@@ -152,6 +152,11 @@ class Lattice {
   // Whether blind move b (see blind_lead_) to (ix, iy) would bring an unknown cell (or one
   // beyond the window) under the footprint of posture q and heading k.
   bool BlindIntoUnknown(int ix, int iy, int q, int k, int b) const;
+  // Whether a cell is unknown and no sole has stood on it (Fog::walked)
+  bool UnseenUnwalked(size_t cell) const {
+    return fog_.type[cell] == perception::CellType::kUnknown &&
+           (fog_.walked.empty() || !fog_.walked[cell]);
+  }
   // Whether cell may lie under a footprint of posture q if level with its origin: a border
   // cell, for crawling only in the crawl zone.
   bool MayBeLevelBorder(size_t cell, int q) const;
@@ -244,7 +249,7 @@ class Lattice {
   std::vector<double> maybe_blocked_d2_[2];
   int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
   std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
-  std::vector<double> unknown_d2_;  // squared distance to the nearest unknown cell, cells^2
+  std::vector<double> unknown_d2_;  // squared distance to the nearest UnseenUnwalked cell
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   double zone_d2_max_ = 0;  // crawl_zone_radius squared, cells^2 (plus kEps)

@@ -482,6 +482,37 @@ TEST(Lattice, BlindMovesStayOnKnownCells) {
   EXPECT_TRUE(moves_to(f, 23, 20));
 }
 
+// Unknown cells a sole has stood on (Fog::walked) do not bar blind moves: the robot came over
+// them. Unwalked unknown cells beside them still do.
+TEST(Lattice, BlindMovesMayGoBackOverWalkedCells) {
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.0, 0.0, 0.56, 1.2, CellType::kUnknown, -INFINITY);  // x < 0.56 unknown
+  fog.walked.assign(fog.type.size(), 0);
+  for (int iy = 11; iy <= 17; ++iy) {  // the way it came: x cells 10..13, y cells 11..17
+    for (int ix = 10; ix <= 13; ++ix) fog.walked[size_t(fog.window.Index(ix, iy))] = 1;
+  }
+  Lattice walked(fog, {0.8, 0.9}, PlannerParams());
+  fog.walked.clear();
+  Lattice unwalked(fog, {0.8, 0.9}, PlannerParams());
+  Successor succ[kMaxSuccessors];
+  // whether standing state (fx, fy), heading +x, has a move to cell (ix, iy)
+  auto moves_to = [&](Lattice* lattice, int fx, int fy, int ix, int iy) {
+    const int from = lattice->StateIndex(fx, fy, 0, Posture::kUpright);
+    EXPECT_TRUE(lattice->Valid(from));
+    return SuccessorTo(lattice, from, lattice->StateIndex(ix, iy, 0, Posture::kUpright), succ) !=
+           nullptr;
+  };
+  // facing +x at (15, 14) the footprint covers x cells 14..16 and y cells 11..17: back to x
+  // cell 14 brings x cell 13, y cells 11..17 under it, all walked
+  EXPECT_TRUE(moves_to(&walked, 15, 14, 14, 14));
+  EXPECT_FALSE(moves_to(&unwalked, 15, 14, 14, 14));
+  // one cell to the left, y cells 12..18: y cell 18 of x cell 13 is unknown and unwalked
+  EXPECT_FALSE(moves_to(&walked, 15, 15, 14, 15));
+  // forward is allowed either way
+  EXPECT_TRUE(moves_to(&walked, 15, 15, 16, 15));
+  EXPECT_TRUE(moves_to(&unwalked, 15, 15, 16, 15));
+}
+
 // The knees reach past the soles' footprint: a walk that ends with an obstacle under them costs
 // body_touch_cost more than the same walk in the open.
 TEST(Lattice, KneesOverAnObstacleCostMore) {
