@@ -181,8 +181,8 @@ struct PlannerParams {
   // The cycle's views look ahead, so a robot walking backward, side-stepping or crawling
   // backward moves where its eyes have not looked: such a move may not bring an unknown cell
   // (or one beyond the window) under the footprint that it did not cover before. Forward moves
-  // may, as the robot looks ahead after each. Cells a sole has stood on (Fog::walked) count as
-  // known: the robot came over them.
+  // may, as the robot looks ahead after each. Cells the standing robot has stood on
+  // (Fog::walked) count as known: it came over them.
   bool blind_moves_stay_known = true;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs

@@ -72,10 +72,11 @@ struct Fog {
   // occupied layer above the floor), -infinity for other cells. Empty when not known
   // (GroundTruthFog); same indexing.
   std::vector<float> ceiling;
-  // Extension filled by the mission loop, not by perception: 1 where the robot's soles have
-  // stood, cells it came over whether or not its eyes ever saw them (it walks forward onto
-  // cells seen from afar or not at all, and never sees them behind it). A blind move may go
-  // back onto them (nav::PlannerParams::blind_moves_stay_known). Empty = none; same indexing.
+  // Extension filled by the mission loop, not by perception: 1 where the standing robot has
+  // stood (its footprint), cells it came over whether or not its eyes ever saw them (it walks
+  // forward onto cells seen from afar or not at all, and never sees them behind it). A blind
+  // move may go back onto them (nav::PlannerParams::blind_moves_stay_known). Empty = none;
+  // same indexing.
   std::vector<uint8_t> walked;
 
   Fog() = default;

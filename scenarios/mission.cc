@@ -229,17 +229,9 @@ double PanToward(const nav::PlanResult& plan, size_t first, const perception::Po
   return pan;
 }
 
-// The floor under the standing robot is known without looking: it stands on it. The body hides
-// it from the eyes, so where the robot came by a way it did not look at, unknown cells lay
-// around its feet and barred the moves the eyes do not look along (a side-step out of a narrow
-// gap's mouth). Unknown cells that the standing footprint covers
-// (centres inside it grown by half a cell) become floor at the believed floor height, except
-// beside a floor or stairs cell on another level (more than h_floor off): the toes may reach
-// past a step's edge there, and a cell marked on the robot's level would move the edge under
-// the landing of the step down (the plan stepped back and forth before it).
-// The global grid cells (indices at `resolution`) whose centres the standing soles cover at
-// `robot`: the footprint's depth along the heading by the shoulders' width across, without the
-// planner's margin (Fog::walked).
+// The global grid cells (indices at `resolution`) that the standing robot covers at `robot`
+// (Fog::walked): those whose centres lie in its footprint, the depth along the heading by the
+// shoulders' width across, without the planner's margin.
 void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot, double resolution,
                     std::set<std::pair<int, int>>* walked) {
   const double along = 0.5 * p.depth, across = 0.5 * p.shoulder_width;
@@ -259,7 +251,7 @@ void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot,
   }
 }
 
-// Fog::walked for the window from the global cells the soles covered
+// Fog::walked for the window from the global cells the standing robot covered
 void MarkWalked(const std::set<std::pair<int, int>>& walked, perception::Fog* fog) {
   const perception::GridWindow& w = fog->window;
   fog->walked.assign(size_t(w.NumCells()), 0);
@@ -269,6 +261,14 @@ void MarkWalked(const std::set<std::pair<int, int>>& walked, perception::Fog* fo
   }
 }
 
+// The floor under the standing robot is known without looking: it stands on it. The body hides
+// it from the eyes, so where the robot came by a way it did not look at, unknown cells lay
+// around its feet and barred the moves the eyes do not look along (a side-step out of a narrow
+// gap's mouth). Unknown cells that the standing footprint covers
+// (centres inside it grown by half a cell) become floor at the believed floor height, except
+// beside a floor or stairs cell on another level (more than h_floor off): the toes may reach
+// past a step's edge there, and a cell marked on the robot's level would move the edge under
+// the landing of the step down (the plan stepped back and forth before it).
 void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& robot, double floor_z,
                         perception::Fog* fog) {
   const perception::GridWindow& w = fog->window;
@@ -525,7 +525,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::string current_move = "look";
   int cycle = 0;
   int last_step_logged = 0;
-  std::set<std::pair<int, int>> walked;  // global cells the standing soles covered (Fog::walked)
+  std::set<std::pair<int, int>> walked;  // global cells the standing robot covered (Fog::walked)
 
   // the video's frames: the chase camera now, the last head image, the last plan picture
   perception::RgbImage video_plan_picture;

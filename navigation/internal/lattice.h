@@ -152,7 +152,7 @@ class Lattice {
   // Whether blind move b (see blind_lead_) to (ix, iy) would bring an unknown cell (or one
   // beyond the window) under the footprint of posture q and heading k.
   bool BlindIntoUnknown(int ix, int iy, int q, int k, int b) const;
-  // Whether a cell is unknown and no sole has stood on it (Fog::walked)
+  // Whether a cell is unknown and the robot has not stood on it (Fog::walked)
   bool UnseenUnwalked(size_t cell) const {
     return fog_.type[cell] == perception::CellType::kUnknown &&
            (fog_.walked.empty() || !fog_.walked[cell]);

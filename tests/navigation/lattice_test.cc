@@ -482,7 +482,7 @@ TEST(Lattice, BlindMovesStayOnKnownCells) {
   EXPECT_TRUE(moves_to(f, 23, 20));
 }
 
-// Unknown cells a sole has stood on (Fog::walked) do not bar blind moves: the robot came over
+// Unknown cells the robot has stood on (Fog::walked) do not bar blind moves: it came over
 // them. Unwalked unknown cells beside them still do.
 TEST(Lattice, BlindMovesMayGoBackOverWalkedCells) {
   Fog fog = FlatFog(40, 30, 0.04);
