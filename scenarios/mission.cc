@@ -229,12 +229,12 @@ double PanToward(const nav::PlanResult& plan, size_t first, const perception::Po
   return pan;
 }
 
-// The global grid cells (indices at `resolution`) that the standing robot covers at `robot`
-// (Fog::walked): those whose centres lie in its footprint, the depth along the heading by the
-// shoulders' width across, without the planner's margin.
-void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot, double resolution,
-                    std::set<std::pair<int, int>>* walked) {
-  const double along = 0.5 * p.depth, across = 0.5 * p.shoulder_width;
+// Calls fn(gx, gy) for each global grid cell (indices at `resolution`) whose centre lies in the
+// rectangle centred on `robot` that reaches `along` either way on its heading and `across` to
+// either side.
+template <typename Fn>
+void ForCellsUnder(const perception::Pose2& robot, double along, double across,
+                   double resolution, Fn fn) {
   const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
   const double reach = std::hypot(along, across);
   const int ix0 = int(std::floor((robot.x - reach) / resolution));
@@ -244,11 +244,18 @@ void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot,
   for (int iy = iy0; iy <= iy1; ++iy) {
     for (int ix = ix0; ix <= ix1; ++ix) {
       const double dx = (ix + 0.5) * resolution - robot.x, dy = (iy + 0.5) * resolution - robot.y;
-      if (std::abs(c * dx + s * dy) <= along && std::abs(-s * dx + c * dy) <= across) {
-        walked->insert({ix, iy});
-      }
+      if (std::abs(c * dx + s * dy) <= along && std::abs(-s * dx + c * dy) <= across) fn(ix, iy);
     }
   }
+}
+
+// The global grid cells (indices at `resolution`) that the standing robot covers at `robot`
+// (Fog::walked): those whose centres lie in its footprint, the depth along the heading by the
+// shoulders' width across, without the planner's margin.
+void AddWalkedCells(const nav::PlannerParams& p, const perception::Pose2& robot, double resolution,
+                    std::set<std::pair<int, int>>* walked) {
+  ForCellsUnder(robot, 0.5 * p.depth, 0.5 * p.shoulder_width, resolution,
+                [&](int gx, int gy) { walked->insert({gx, gy}); });
 }
 
 // Fog::walked for the window from the global cells the standing robot covered
@@ -274,32 +281,23 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const perception::Pose2& ro
   const perception::GridWindow& w = fog->window;
   const double along = 0.5 * p.depth + p.margin + 0.5 * w.resolution;
   const double across = 0.5 * p.shoulder_width + p.margin + 0.5 * w.resolution;
-  const double c = std::cos(robot.yaw), s = std::sin(robot.yaw);
-  const double reach = std::hypot(along, across);
-  int ix0, iy0, ix1, iy1;
-  w.CellOf(robot.x - reach, robot.y - reach, &ix0, &iy0);
-  w.CellOf(robot.x + reach, robot.y + reach, &ix1, &iy1);
-  for (int iy = std::max(0, iy0); iy <= std::min(w.size_y - 1, iy1); ++iy) {
-    for (int ix = std::max(0, ix0); ix <= std::min(w.size_x - 1, ix1); ++ix) {
-      const Eigen::Vector2d d = w.CellCenter(ix, iy) - Eigen::Vector2d(robot.x, robot.y);
-      if (std::abs(c * d.x() + s * d.y()) > along || std::abs(-s * d.x() + c * d.y()) > across) {
-        continue;
+  ForCellsUnder(robot, along, across, w.resolution, [&](int gx, int gy) {
+    const int ix = gx - w.origin_ix, iy = gy - w.origin_iy;
+    if (!w.Contains(ix, iy)) return;
+    const size_t i = size_t(w.Index(ix, iy));
+    if (fog->type[i] != perception::CellType::kUnknown) return;
+    bool edge = false;
+    for (int jy = std::max(0, iy - 1); jy <= std::min(w.size_y - 1, iy + 1); ++jy) {
+      for (int jx = std::max(0, ix - 1); jx <= std::min(w.size_x - 1, ix + 1); ++jx) {
+        const perception::CellType t = fog->TypeAt(jx, jy);
+        edge |= (t == perception::CellType::kFloor || t == perception::CellType::kStairs) &&
+                std::abs(fog->HeightAt(jx, jy) - floor_z) > p.h_floor;
       }
-      const size_t i = size_t(w.Index(ix, iy));
-      if (fog->type[i] != perception::CellType::kUnknown) continue;
-      bool edge = false;
-      for (int jy = std::max(0, iy - 1); jy <= std::min(w.size_y - 1, iy + 1); ++jy) {
-        for (int jx = std::max(0, ix - 1); jx <= std::min(w.size_x - 1, ix + 1); ++jx) {
-          const perception::CellType t = fog->TypeAt(jx, jy);
-          edge |= (t == perception::CellType::kFloor || t == perception::CellType::kStairs) &&
-                  std::abs(fog->HeightAt(jx, jy) - floor_z) > p.h_floor;
-        }
-      }
-      if (edge) continue;
-      fog->type[i] = perception::CellType::kFloor;
-      fog->height[i] = float(floor_z);
     }
-  }
+    if (edge) return;
+    fog->type[i] = perception::CellType::kFloor;
+    fog->height[i] = float(floor_z);
+  });
 }
 
 // Plans to within params' tolerance (half the scenario's, so the robot ends inside it despite
