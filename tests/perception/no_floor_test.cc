@@ -206,6 +206,7 @@ TEST(NoFloor, RaysMeetingTheFloorNearTheEyesDoNotCount) {
 // smeared heights back (VoidParams::drop_floor), but not the heights of a top.
 TEST(NoFloor, EmptyRaysTakeBackAFloorSmearedBeyondItsEdge) {
   MapParams params;
+  params.no_floor.drop_floor = true;
   const Eigen::Isometry3d far = LookAt({-0.6, 0.0, 0.5}, {1.0, 0.0, 0.0});
   // the far view: the floor seen up to 0.88 m right of the middle (y < 0), and a 0.3 m top
   // at 0.5-0.8 m left of it; the near eyes see y within +-0.3 m at x = 0.8 m
