@@ -334,8 +334,8 @@ struct FogParams {
 // min_frames frames in which no floor point fell in it (frames before it had a height count
 // too) is dropped, and the grid's layers that held it lose their evidence. Off by default: on
 // 80 open rooms it won one mission (76 of 80 against 75), but on 38 fresh ones it lost two
-// (36 of 38 against 38), one with a sole past the floor's edge on cells it had made unknown
-// and one walking into a divider's end.
+// (36 of 38 against 38), both unsafe: a sole past the floor's edge, and a walk into a
+// divider's end.
 struct VoidParams {
   double range = 1.5;
   double min_distance = 0.45;  // metres, from the camera to where the ray meets the floor
