@@ -76,7 +76,8 @@ INSTANTIATE_TEST_SUITE_P(
                       "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted",
                       "eye_level_table", "tables_by_the_wall", "gap_seen_at_an_angle",
                       "crawl_then_gap", "passage_behind_table",
-                      "corridor_between_dividers", "crawl_then_gap_shifted"));
+                      "corridor_between_dividers", "crawl_then_gap_shifted",
+                      "blocks_by_the_edge"));
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
