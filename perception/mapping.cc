@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <opencv2/imgproc.hpp>
 
+#include "perception/internal/box_slab.h"
 #include "perception/internal/map_update.h"
 
 namespace fognav::perception {
@@ -498,22 +499,12 @@ struct BodyBox {
   Eigen::Vector3d o;     // the camera in the box frame
   Eigen::Vector3d half;  // half sizes grown by the margin
 
-  // Whether the segment from the camera to the camera + d (grid frame) meets the box (slab test).
+  // Whether the segment from the camera to the camera + d (grid frame) meets the box.
   bool Meets(const Eigen::Vector3d& d_G) const {
-    const Eigen::Vector3d v = R_BG * d_G;
-    double t0 = 0, t1 = 1;
-    for (int a = 0; a < 3; ++a) {
-      if (std::abs(v[a]) < 1e-12) {
-        if (std::abs(o[a]) > half[a]) return false;
-        continue;
-      }
-      double lo = (-half[a] - o[a]) / v[a], hi = (half[a] - o[a]) / v[a];
-      if (lo > hi) std::swap(lo, hi);
-      t0 = std::max(t0, lo);
-      t1 = std::min(t1, hi);
-      if (t0 > t1) return false;
-    }
-    return true;
+    double t_in = 0, t_out = 0;
+    int face = -1;
+    return internal::SlabInterval(o, R_BG * d_G, half, &t_in, &t_out, &face) &&
+           std::max(t_in, 0.0) <= std::min(t_out, 1.0);
   }
 };
 

@@ -6,6 +6,8 @@
 #include <random>
 #include <utility>
 
+#include "perception/internal/box_slab.h"
+
 namespace fognav::perception::internal {
 
 CameraIntrinsics MakeIntrinsics(int width, int height, double hfov_deg) {
@@ -74,30 +76,12 @@ SyntheticFrame RenderBoxes(const std::vector<OrientedBox>& solids_W, const Eigen
         const OrientedBox& box = solids_W[b];
         const Eigen::Matrix3d R_BW = box.X_FB.linear().transpose();
         const Eigen::Vector3d o = R_BW * (p_WC - box.X_FB.translation());
-        const Eigen::Vector3d dir = R_BW * d_W;
-        double t_in = -std::numeric_limits<double>::infinity();
-        double t_out = std::numeric_limits<double>::infinity();
+        double t_in = 0, t_out = 0;
         int face = -1;
-        bool miss = false;
-        for (int k = 0; k < 3 && !miss; ++k) {
-          const double h = box.half_size[k];
-          if (std::abs(dir[k]) < 1e-15) {
-            miss = std::abs(o[k]) > h;
-            continue;
-          }
-          double t1 = (-h - o[k]) / dir[k], t2 = (h - o[k]) / dir[k];
-          int f1 = 2 * k, f2 = 2 * k + 1;  // face 2k is at -h, 2k+1 at +h
-          if (t1 > t2) {
-            std::swap(t1, t2);
-            std::swap(f1, f2);
-          }
-          if (t1 > t_in) {
-            t_in = t1;
-            face = f1;
-          }
-          t_out = std::min(t_out, t2);
+        if (!SlabInterval(o, R_BW * d_W, box.half_size, &t_in, &t_out, &face) || t_in > t_out ||
+            t_in <= 0.0 || face < 0) {
+          continue;
         }
-        if (miss || t_in > t_out || t_in <= 0.0 || face < 0) continue;
         if (t_in < best_t) {
           best_t = t_in;
           best_box = int(b);
