@@ -1,6 +1,7 @@
 // Whole missions through the fognav program (ctest label "mission"): the suite's scenarios
 // meet their expectations, the same scenario and seed give the same report, and a failed
 // expectation is exit code 1.
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
@@ -66,18 +67,29 @@ TEST_P(Suite, MeetsItsExpectations) {
   }
 }
 
-// The whole suite of scenarios/.
-INSTANTIATE_TEST_SUITE_P(
-    Missions, Suite,
-    ::testing::Values("stairs_and_table", "obstacles", "narrow_gap", "stairs", "table", "low_table",
-                      "drop_off", "enclosed", "slalom", "turn_first", "noisy_odometry",
-                      "goal_at_wall", "noisy_gap", "wall_ahead", "course_shifted", "turned_stairs",
-                      "thick_table", "long_wall", "table_in_divider", "doorway", "divider_opening",
-                      "shallow_stairs", "diagonal_boxes", "single_tread", "doorway_shifted",
-                      "eye_level_table", "tables_by_the_wall", "gap_seen_at_an_angle",
-                      "crawl_then_gap", "passage_behind_table",
-                      "corridor_between_dividers", "crawl_then_gap_shifted",
-                      "blocks_by_the_edge"));
+// The whole suite: every scenario file of scenarios/.
+const std::vector<std::string> kSuite = {
+    "stairs_and_table", "obstacles", "narrow_gap", "stairs", "table", "low_table", "drop_off",
+    "enclosed", "slalom", "turn_first", "noisy_odometry", "goal_at_wall", "noisy_gap",
+    "wall_ahead", "course_shifted", "turned_stairs", "thick_table", "long_wall",
+    "table_in_divider", "doorway", "divider_opening", "shallow_stairs", "diagonal_boxes",
+    "single_tread", "doorway_shifted", "eye_level_table", "tables_by_the_wall",
+    "gap_seen_at_an_angle", "crawl_then_gap", "passage_behind_table",
+    "corridor_between_dividers", "crawl_then_gap_shifted", "blocks_by_the_edge", "floor_edge"};
+
+INSTANTIATE_TEST_SUITE_P(Missions, Suite, ::testing::ValuesIn(kSuite));
+
+// A scenario file added to scenarios/ but not to kSuite would never run in CI.
+TEST(Mission, EveryScenarioFileIsInTheSuite) {
+  int files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator("scenarios")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++files;
+    const std::string name = entry.path().stem().string();
+    EXPECT_NE(std::find(kSuite.begin(), kSuite.end(), name), kSuite.end()) << name;
+  }
+  EXPECT_EQ(files, int(kSuite.size()));
+}
 
 TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
   std::string first_out = TempDir("det1"), second_out = TempDir("det2"), output;
