@@ -72,7 +72,10 @@ struct ExecutionLimits {
   // and a phantom seen from afar can close a door. If the real map stops that plan, the robot
   // goes (exploring, at most max_explorations times in all) to within inspect_reach of the last
   // pose before the stop, where near views overrule the far evidence
-  // (OccupancyParams::overrule_ratio) or confirm it.
+  // (OccupancyParams::overrule_ratio) or confirm it. It looks around as soon as it comes within
+  // that reach (of a peek's pose too, below), whether or not the map holds a way on by then:
+  // following a way that had opened elsewhere instead, its eyes on the wall beside it after a
+  // side-step, it never looked along the passage it had come to (tables_by_the_wall_shifted).
   // When that finds no way, the same with inspect_near_range: at 1.5 m a 1-pixel error of a
   // partition's end beside a failed match puts a phantom 0.2 m into a door, at 1 m 0.1 m (7 of
   // 8 doorways shifted by 1-3 cm went through with it, none without; 131 runs lost none).
@@ -807,7 +810,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   int explorations = 0;
   double explore_best = 0;  // the distance to explore_to when it last got min_approach nearer
   double explore_reach = 0;  // exploring ends within this distance of explore_to
-  bool inspecting = false;   // explore_to is where to look at far obstacle evidence from
+  bool inspecting = false;   // explore_to is where to look from (InspectionPose, PeekPose)
   // where to look once there (PeekPose), if peek_pending
   bool peek_pending = false;
   Eigen::Vector2d peek_at = Eigen::Vector2d::Zero();
@@ -905,8 +908,21 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         ++explore_stalls;
       }
       if (d < explore_reach || explore_stalls > limits.explore_patience) {
+        // come to look, the robot looks around (and for a peek, at the floor beyond the blind
+        // move) at once: following a way that opened elsewhere on the way there, its eyes
+        // would see only where that way goes (come side-stepping, they face the wall beside
+        // the passage it came to look along)
+        const bool there_to_look = inspecting && d < explore_reach;
         explore_to.reset();
         inspecting = false;
+        if (there_to_look) {
+          look_around();
+          if (peek_pending) look_at_floor(peek_at, believed_floor_z);
+          peek_pending = false;
+          looked_at = believed;
+          just_looked = true;
+          continue;
+        }
       }
     }
     recent.push_back({position, nearest_to_goal});
