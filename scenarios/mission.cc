@@ -814,6 +814,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   // where to look once there (PeekPose), if peek_pending
   bool peek_pending = false;
   Eigen::Vector2d peek_at = Eigen::Vector2d::Zero();
+  // looks around where the robot stands (`here`), then at the floor of a pending peek
+  auto look_around_and_peek = [&](const perception::Pose2& here) {
+    look_around();
+    if (peek_pending) look_at_floor(peek_at, believed_floor_z);
+    peek_pending = false;
+    looked_at = here;
+    just_looked = true;
+  };
   // believed positions of the last cycles (thrash_cycles) and the nearest to the goal so far
   std::deque<std::pair<Eigen::Vector2d, double>> recent;
   int thrashes = 0;         // times it went back and forth (thrash_cycles)
@@ -916,11 +924,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         explore_to.reset();
         inspecting = false;
         if (there_to_look) {
-          look_around();
-          if (peek_pending) look_at_floor(peek_at, believed_floor_z);
-          peek_pending = false;
-          looked_at = believed;
-          just_looked = true;
+          look_around_and_peek(believed);
           continue;
         }
       }
@@ -951,11 +955,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
-        look_around();
-        if (peek_pending) look_at_floor(peek_at, believed_floor_z);
-        peek_pending = false;
-        looked_at = believed;
-        just_looked = true;
+        look_around_and_peek(believed);
         continue;
       }
       // no way even after looking around: get as near the goal as the map allows and look
