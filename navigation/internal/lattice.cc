@@ -25,6 +25,26 @@ bool Covers(const std::vector<CellStep>& cells, int dx, int dy) {
                      [&](const CellStep& c) { return c.dx == dx && c.dy == dy; });
 }
 
+// The range of the known floor heights under the soles: they stand level when it spans at most
+// h_floor. Each cell within h_floor of the origin's alone lets a cell across a riser, whose
+// height the map averages between the two treads, join both treads (a 2 cm rise, the cell at
+// 3 cm, both treads within 1.5 cm of it) and a sole stand across the riser.
+class Spread {
+ public:
+  explicit Spread(float h) { Add(h, kInf); }
+  // Takes height h in (unknown and -infinity are not heights); whether the range stays within
+  // `limit`.
+  bool Add(float h, double limit) {
+    if (!std::isfinite(h)) return true;
+    lo_ = std::min(lo_, double(h));
+    hi_ = std::max(hi_, double(h));
+    return hi_ - lo_ <= limit;
+  }
+
+ private:
+  double lo_ = kInf, hi_ = -kInf;
+};
+
 constexpr CellStep kSteps[kNumHeadings] = {{1, 0},  {2, 1},   {1, 1},   {1, 2},
                                            {0, 1},  {-1, 2},  {-1, 1},  {-2, 1},
                                            {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2},
@@ -963,6 +983,7 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
     if (q == 0 && LevelAround(cell)) return true;
   }
   const std::vector<CellStep>& cells = footprint_[q][heading];
+  Spread stance(centre_h);
   for (size_t j = 0; j < cells.size(); ++j) {
     const int nx = ix + cells[j].dx, ny = iy + cells[j].dy;
     if (!w.Contains(nx, ny)) {
@@ -978,6 +999,7 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
     // h_stairs off) is allowed too
     const bool ring = q == 0 && !level_cell_[heading][j];
     if (!OnLevel(i, centre_h, ring ? p_.h_stairs : p_.h_floor)) return false;
+    if (q == 0 && !ring && !stance.Add(fog_.height[i], p_.h_floor)) return false;
   }
   return true;
 }
@@ -1161,9 +1183,9 @@ bool Lattice::HeadMeetsSolid(int cell, int ix, int iy, float centre_h) const {
 
 bool Lattice::LevelAround(int cell) const {
   const float centre_h = floor_h_[size_t(cell)];
-  return std::isfinite(centre_h) &&
-         double(level_hi_[size_t(cell)]) - double(centre_h) <= p_.h_floor &&
-         double(centre_h) - double(level_lo_[size_t(cell)]) <= p_.h_floor;
+  const double lo = std::min(double(level_lo_[size_t(cell)]), double(centre_h));
+  const double hi = std::max(double(level_hi_[size_t(cell)]), double(centre_h));
+  return std::isfinite(centre_h) && hi - lo <= p_.h_floor;
 }
 
 int Lattice::BodyTouches(int cell, int heading) const {
@@ -1242,9 +1264,23 @@ bool Lattice::TurnSweepClear(int cell, int k, int* touch) const {
   const double soles = turn_soles_radius_cells_ + kEps;
   if (maybe_blocked_d2_[0][size_t(cell)] <= soles * soles ||
       !(LevelAround(cell) || !std::isfinite(centre_h))) {
+    // the soles at an angle between cover cells of both ends' stances and of the sweep
+    Spread soles_h(centre_h);
+    for (const int e : {k, (k + 1) % kNumHeadings}) {
+      const std::vector<CellStep>& cells = footprint_[0][e];
+      for (size_t j = 0; j < cells.size(); ++j) {
+        const int nx = ix + cells[j].dx, ny = iy + cells[j].dy;
+        if (level_cell_[e][j] && w.Contains(nx, ny) &&
+            !soles_h.Add(fog_.height[size_t(w.Index(nx, ny))], p_.h_floor)) {
+          return false;
+        }
+      }
+    }
     for (const CellStep& o : turn_soles_[k]) {
       const int nx = ix + o.dx, ny = iy + o.dy;
-      if (w.Contains(nx, ny) && !OnLevel(size_t(w.Index(nx, ny)), centre_h, p_.h_floor)) {
+      if (!w.Contains(nx, ny)) continue;
+      const size_t i = size_t(w.Index(nx, ny));
+      if (!OnLevel(i, centre_h, p_.h_floor) || !soles_h.Add(fog_.height[i], p_.h_floor)) {
         return false;
       }
     }

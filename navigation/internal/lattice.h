@@ -139,6 +139,11 @@ class Lattice {
  private:
   // The cached flags of state s (see SearchMemory::valid_stamp), computed on first use.
   uint32_t StateFlags(int s);
+  // Whether the footprint of `posture` at `cell` and `heading` holds no obstacle or tunnel cell
+  // and stands level: standing, the known floor heights under the soles' stance (grown by
+  // level_margin) and the origin's span at most h_floor, and those in the ring beyond lie
+  // within h_stairs of the origin's; crawling, every cell may be crawled on (ok_) or is a
+  // border cell of the crawl zone on the origin's level.
   bool FootprintFits(int cell, int heading, int posture) const;
   // Whether an obstacle or floor cell within head_reach + margin of a standing origin at cell
   // (ix, iy), on floor centre_h, rises more than head_low above it.
@@ -190,7 +195,7 @@ class Lattice {
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
   // Whether every known floor height (not unknown or obstacle, finite) in the square of
-  // level_lo_ / level_hi_ around `cell` lies within h_floor of the cell's own.
+  // level_lo_ / level_hi_ around `cell` and the cell's own lie within a range of h_floor.
   bool LevelAround(int cell) const;
   // Whether the standing body at `cell`, as the offsets `offsets` (body_extra_, turn_body_),
   // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's, or an
@@ -205,8 +210,9 @@ class Lattice {
   // only so; unknown cells and cells without heights to compare are allowed).
   bool OnLevel(size_t i, float centre_h, double tolerance) const;
   // For a standing turn in place at `cell` between heading k and k + 1: false if the soles
-  // sweep an obstacle or tunnel cell or a known floor more than h_floor off the origin's (a
-  // corner would catch on a riser); raises *touch to what the body sweeps, as BodyMeets.
+  // sweep an obstacle or tunnel cell, or if the known floors under the soles at both ends and
+  // in between (the origin's among them) span more than h_floor (a corner would catch on a
+  // riser); raises *touch to what the body sweeps, as BodyMeets.
   bool TurnSweepClear(int cell, int k, int* touch) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();

@@ -174,11 +174,12 @@ Fog LevelsFog() {
   return fog;
 }
 
-// Standing is allowed exactly where no footprint cell is an obstacle or tunnel and every one
-// with a known floor height (not unknown, finite) is within h_floor of the floor under the
-// origin (within h_stairs outside the soles' stance grown by level_margin), checked cell by cell
-// here, so the planner's shortcuts (distance transforms, height ranges) can never let a footprint
-// span a step, even on a ramp where no neighbours differ by more than h_floor.
+// Standing is allowed exactly where no footprint cell is an obstacle or tunnel, the known floor
+// heights (not unknown, finite) under the soles' stance grown by level_margin span at most
+// h_floor with the floor under the origin, and those outside it are within h_stairs of the
+// origin's, checked cell by cell here, so the planner's shortcuts (distance transforms, height
+// ranges) can never let a footprint span a step, even on a ramp where no neighbours differ by
+// more than h_floor.
 TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   const PlannerParams p;
   const Fog fog = LevelsFog();
@@ -193,6 +194,7 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
       for (int k = 0; k < kNumHeadings; ++k) {
         const double c = std::cos(HeadingYaw(k)), s = std::sin(HeadingYaw(k));
         bool fits = true, off_level = false;
+        double lo = std::isfinite(level) ? level : INFINITY, hi = -lo;
         for (int dy = -6; dy <= 6; ++dy) {
           for (int dx = -6; dx <= 6; ++dx) {
             const double u = (dx * c + dy * s) * w.resolution;
@@ -214,11 +216,18 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
               fits = false;
             } else if (!std::isfinite(h) || !std::isfinite(level)) {
               fits = fits && t != CellType::kBorder;
-            } else if (std::abs(double(h) - level) > (ring ? p.h_stairs : p.h_floor)) {
+            } else if (ring && std::abs(double(h) - level) > p.h_stairs) {
               fits = false;
               off_level = true;
+            } else if (!ring) {
+              lo = std::min(lo, double(h));
+              hi = std::max(hi, double(h));
             }
           }
+        }
+        if (hi - lo > p.h_floor) {
+          fits = false;
+          off_level = true;
         }
         // and no tunnel cell within the head's reach
         const double head = p.head_reach + p.margin;
@@ -240,10 +249,35 @@ TEST(Lattice, StandingIsAllowedExactlyWhereTheFootprintIsLevel) {
   // the world has both, so the comparison means something
   EXPECT_GT(allowed, 3000);
   EXPECT_GT(refused_for_level, 3000);
-  // on the ramp: level facing up it (3 cells span 1 cm) and across it (the soles' 5 cells span
-  // 2 cm, 1 cm either side of the origin's); the shoulders' 7 would span 3 cm
+  // on the ramp: level facing up it (the stance's 3 cells along span 1 cm), not across it (its
+  // 5 cells span 2 cm, though each is within 1 cm of the origin's: a flat sole on the
+  // origin's floor would meet the ramp 1 cm up)
   EXPECT_TRUE(lattice.Valid(lattice.StateIndex(20, 5, 0, Posture::kUpright)));
-  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
+  EXPECT_FALSE(lattice.Valid(lattice.StateIndex(20, 5, 4, Posture::kUpright)));
+}
+
+// A riser inside a cell, as the map holds it: the column of cells it crosses at the mean of
+// the two treads (2 and 4 cm, the column at 3 cm). Standing on the column, facing along it or
+// across it, the soles cover both treads (each within h_floor of the origin's 3 cm, but 2 cm
+// apart): not allowed. On either tread beside the column, or on the 2 cm tread alone, allowed.
+TEST(Lattice, NoStandingAcrossARiserTheMapAveraged) {
+  Fog fog = FlatFog(40, 30, 0.04);
+  FillBox(&fog, 0.40, 0.0, 0.80, 1.2, CellType::kFloor, 0.02f);
+  FillBox(&fog, 0.80, 0.0, 0.84, 1.2, CellType::kFloor, 0.03f);  // x cell 20
+  FillBox(&fog, 0.84, 0.0, 1.20, 1.2, CellType::kFloor, 0.04f);
+  ClassifyFloorChanges(&fog, 0.015, 0.05);
+  Lattice lattice(fog, {1.4, 0.6}, PlannerParams());
+  for (const int k : {0, 2, 4}) {
+    EXPECT_FALSE(lattice.Valid(lattice.StateIndex(20, 15, k, Posture::kUpright))) << k;
+    EXPECT_TRUE(lattice.Valid(lattice.StateIndex(15, 15, k, Posture::kUpright))) << k;
+  }
+  // facing +x, the soles' stance is 3 cells deep: two cells before or after the column it
+  // ends a cell short of it; one cell before or after, it holds the column and one tread, 1 cm
+  // apart
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(18, 15, 0, Posture::kUpright)));
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(22, 15, 0, Posture::kUpright)));
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(19, 15, 0, Posture::kUpright)));
+  EXPECT_TRUE(lattice.Valid(lattice.StateIndex(21, 15, 0, Posture::kUpright)));
 }
 
 // Steps up and down go forward (at most max_step_sideways across the heading), by at most
@@ -633,8 +667,8 @@ TEST(Lattice, HandsKeepOffTheLowSideOfATopsEdge) {
 }
 
 // A standing turn in place between two valid headings is offered exactly when no cell the
-// soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel or off the
-// origin's level, and costs body_touch_cost more when the body (the legs' band as deep as the
+// soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel and the
+// known floors it sweeps, the ends' included, span at most h_floor with the origin's, and costs body_touch_cost more when the body (the legs' band as deep as the
 // body rectangle and as wide as the footprint, the arms' as deep as the footprint and as wide
 // as the hands reach) sweeps an obstacle, tunnel or a floor more than h_stairs higher beyond
 // the body at the start heading (paid for on the way there). Checked cell by cell with the
@@ -672,6 +706,10 @@ void CheckTurnsInPlace(const Fog& fog, TurnCounts* counts) {
         // per cell: inside at some angle by more than 2 mm (surely), by less (maybe)
         bool soles_surely = false, soles_maybe = false, body_surely = false, body_maybe = false;
         bool edge_surely = false, edge_maybe = false;  // a hand over a border's low side only
+        // the range of the known floors under the soles at any angle, with the origin's: [0]
+        // surely, [1] maybe
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        if (std::isfinite(level)) lo[0] = lo[1] = hi[0] = hi[1] = level;
         for (int dy = -6; dy <= 6; ++dy) {
           for (int dx = -6; dx <= 6; ++dx) {
             if (!w.Contains(ix + dx, iy + dy)) continue;
@@ -703,7 +741,8 @@ void CheckTurnsInPlace(const Fog& fog, TurnCounts* counts) {
             const bool hidden_hands = hidden_top - level > p.hand_low;
             const bool border = type == CellType::kBorder;
             const bool touch = solid || (known && double(h) - level > p.h_stairs);
-            if (!off_level && !touch && !hidden_legs && !hidden_hands) continue;
+            const bool near = std::hypot(dx, dy) * w.resolution <= std::hypot(sa, sb) + 0.003;
+            if (!off_level && !touch && !hidden_legs && !hidden_hands && !(known && near)) continue;
             const double c1 = std::cos(yaw + turn), s1 = std::sin(yaw + turn);
             const double u1 = (dx * c1 + dy * s1) * w.resolution;
             const double v1 = (-dx * s1 + dy * c1) * w.resolution;
@@ -744,6 +783,10 @@ void CheckTurnsInPlace(const Fog& fog, TurnCounts* counts) {
                 const bool counted =
                     !in_end_soles && (j == 100 || !in_end_body) && in_body && (g > 0 || !at_start);
                 (g < 0 ? soles_surely : soles_maybe) |= off_level && in_soles;
+                if (known && in_soles) {
+                  lo[g > 0] = std::min(lo[g > 0], double(h));
+                  hi[g > 0] = std::max(hi[g > 0], double(h));
+                }
                 (g < 0 ? body_surely : body_maybe) |=
                     (touch && in_body && (g > 0 || !at_start)) || (hidden_here && counted);
                 (g < 0 ? edge_surely : edge_maybe) |= edge_here && counted;
@@ -751,6 +794,8 @@ void CheckTurnsInPlace(const Fog& fog, TurnCounts* counts) {
             }
           }
         }
+        soles_surely = soles_surely || hi[0] - lo[0] > p.h_floor;
+        soles_maybe = soles_maybe || hi[1] - lo[1] > p.h_floor;
         const Successor* move = SuccessorTo(&lattice, s, t, succ);
         if (soles_surely) {
           EXPECT_EQ(move, nullptr) << "cell " << ix << "," << iy << " heading " << k;

@@ -77,6 +77,7 @@ double OriginHeight(const Fog& fog, const PathPose& q) {
 void ExpectLevel(const Fog& fog, const PathPose& q, const PlannerParams& p,
                  const std::string& what) {
   const double level = OriginHeight(fog, q);
+  double lo = level, hi = level;  // under the soles
   for (const bool soles : {true, false}) {
     const double margin = soles ? p.level_margin : p.margin;
     for (const auto& [ix, iy] : FootprintCells(fog, q, p, margin, soles)) {
@@ -85,8 +86,15 @@ void ExpectLevel(const Fog& fog, const PathPose& q, const PlannerParams& p,
           << what << ": footprint cell " << ix << "," << iy << " ("
           << perception::CellTypeName(fog.TypeAt(ix, iy)) << ", " << fog.HeightAt(ix, iy)
           << " m) off the origin's level " << level << (soles ? " under the soles" : "");
+      if (soles) {
+        lo = std::min(lo, double(fog.HeightAt(ix, iy)));
+        hi = std::max(hi, double(fog.HeightAt(ix, iy)));
+      }
     }
   }
+  // and the soles' floors span at most h_floor, the origin's with them
+  EXPECT_LE(hi - lo, p.h_floor + 1e-7) << what << ": floors from " << lo << " to " << hi
+                                       << " m under the soles";
 }
 
 // Checks every pose after the start: no obstacle cell under any footprint, a standing one level
@@ -562,6 +570,24 @@ TEST(Planner, StandsLevelAndStepsWithinReachOnTheScenarioTreads) {
       ExpectFootprintsClear(fog, r, p);
       ExpectMovesConsistent(r);
     }
+  }
+}
+
+// 2 cm treads as the map holds them when each riser lies inside a cell: a column of cells at
+// the mean of the two levels (1 and 3 cm). Each such cell is within h_floor of both treads, so
+// a test against the origin's floor alone let a robot on that column stand across the riser
+// (the closed-loop collision: a sole met a tread 9 mm deep as the robot turned there). The
+// plan still climbs, but never stands on floors spanning more than h_floor.
+TEST(Planner, NeverStandsAcrossARiserTheMapAveraged) {
+  const Fog fog = Treads({{1.0, 0.01f}, {1.04, 0.02f}, {1.32, 0.03f}, {1.36, 0.04f}}, 1.68);
+  const PlannerParams p;
+  for (const Pose2& start : {Pose2{0.50, 0.82, 0.0}, Pose2{0.40, 0.30, 0.5}}) {
+    const PlanResult r = Plan(fog, start, {2.50, 0.82}, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+    ExpectFootprintsClear(fog, r, p);
+    ExpectMovesConsistent(r);
+    // up onto the 4 cm tread and down off it: somewhere on the way, a step
+    EXPECT_GE(Count(r, Move::kStairsUp) + Count(r, Move::kStairsDown), 2) << Moves(r);
   }
 }
 
