@@ -106,6 +106,13 @@ struct ExecutionLimits {
   // twice, it has no way (no_path, no_progress) instead of walking until it times out
   int thrash_cycles = 20;
   double thrash_radius = 0.6;
+  // so does a robot that comes to the same pose by moving this many times among the last
+  // thrash_cycles poses it came to, no nearer to the goal than the first time, whether or not
+  // its plans reach the goal: the views from two poses turn the map each way in turn, and each
+  // plan takes it back to the other pose (it turned to and fro in place until it timed out).
+  // Three times came about in missions that then got through (turning while manoeuvring by a
+  // table under odometry noise; back from where a way ended).
+  int circling_arrivals = 5;
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
   double side_look_pan = 0.8;  // rad
@@ -824,6 +831,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   };
   // believed positions of the last cycles (thrash_cycles) and the nearest to the goal so far
   std::deque<std::pair<Eigen::Vector2d, double>> recent;
+  // the last thrash_cycles poses it came to by moving, with the nearest to the goal it had
+  // been by then
+  std::deque<std::pair<perception::Pose2, double>> arrivals;
   int thrashes = 0;         // times it went back and forth (thrash_cycles)
   int explore_stalls = 0;   // cycles since it last got min_approach nearer
   // whether a plan moves the robot at all, and whether it leads min_approach nearer to `target`
@@ -884,14 +894,28 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     nav::PlannerParams used = planner_params;
     plan = PlanToGoal(fog, believed, scenario, planner_params, posture, &used);
+    auto same_pose = [&](const perception::Pose2& a, const perception::Pose2& b) {
+      return std::hypot(a.x - b.x, a.y - b.y) < 0.5 * fog.window.resolution &&
+             std::abs(WrapAngle(a.yaw - b.yaw)) < 0.05;
+    };
+    // come to this pose by moving for the circling_arrivals-th time: it goes back and forth
+    const bool moved_here = arrivals.empty() || !same_pose(arrivals.back().first, believed);
+    int times_here = 0;
+    double nearest_then = 0;  // at the first time
+    for (const auto& [pose, nearest] : arrivals) {
+      if (!same_pose(pose, believed)) continue;
+      if (times_here++ == 0) nearest_then = nearest;
+    }
+    const bool circling = moved_here && times_here + 1 >= limits.circling_arrivals &&
+                          nearest_to_goal > nearest_then - limits.min_approach;
+    if (moved_here) arrivals.push_back({believed, nearest_to_goal});
+    if (int(arrivals.size()) > limits.thrash_cycles) arrivals.pop_front();
     // keep to the last plan where the robot got to its end of the run and the rest of it is
     // still allowed and about as cheap
     if (plan.status == nav::PlanStatus::kOk && last_plan.status == nav::PlanStatus::kOk &&
         last_plan_at < last_plan.path.size()) {
       const nav::PathPose& at = last_plan.path[last_plan_at];
-      if (at.posture == posture && std::hypot(at.pose_G.x - believed.x, at.pose_G.y - believed.y) <
-                                       0.5 * fog.window.resolution &&
-          std::abs(WrapAngle(at.pose_G.yaw - believed.yaw)) < 0.05) {
+      if (at.posture == posture && same_pose(at.pose_G, believed)) {
         nav::PlanResult rest =
             nav::ContinuePlan(fog, last_plan, last_plan_at, believed, scenario.goal, used);
         if (moves(rest) && rest.cost <= plan.cost + std::max(limits.keep_plan_margin,
@@ -931,13 +955,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     recent.push_back({position, nearest_to_goal});
     if (int(recent.size()) > limits.thrash_cycles) recent.pop_front();
-    const bool thrashing = !plan.reaches_goal && int(recent.size()) == limits.thrash_cycles &&
-                           nearest_to_goal > recent.front().second - limits.min_approach &&
-                           std::all_of(recent.begin(), recent.end(), [&](const auto& r) {
-                             return (r.first - recent.front().first).norm() < limits.thrash_radius;
-                           });
+    const bool thrashing =
+        circling ||
+        (!plan.reaches_goal && int(recent.size()) == limits.thrash_cycles &&
+         nearest_to_goal > recent.front().second - limits.min_approach &&
+         std::all_of(recent.begin(), recent.end(), [&](const auto& r) {
+           return (r.first - recent.front().first).norm() < limits.thrash_radius;
+         }));
     if (thrashing) {
       recent.clear();
+      arrivals.clear();
       ++thrashes;
     }
     if (thrashes > 1) {  // the ways it finds take it back and forth

@@ -76,7 +76,7 @@ const std::vector<std::string> kSuite = {
     "single_tread", "doorway_shifted", "eye_level_table", "tables_by_the_wall",
     "gap_seen_at_an_angle", "crawl_then_gap", "passage_behind_table",
     "corridor_between_dividers", "crawl_then_gap_shifted", "blocks_by_the_edge", "floor_edge",
-    "tables_by_the_wall_shifted"};
+    "tables_by_the_wall_shifted", "divider_end_at_a_turn"};
 
 INSTANTIATE_TEST_SUITE_P(Missions, Suite, ::testing::ValuesIn(kSuite));
 
