@@ -106,12 +106,12 @@ struct ExecutionLimits {
   // twice, it has no way (no_path, no_progress) instead of walking until it times out
   int thrash_cycles = 20;
   double thrash_radius = 0.6;
-  // so does a robot that comes to the same pose by moving this many times among the last
-  // thrash_cycles poses it came to, no nearer to the goal than the first time, whether or not
-  // its plans reach the goal: the views from two poses turn the map each way in turn, and each
-  // plan takes it back to the other pose (it turned to and fro in place until it timed out).
-  // Three times came about in missions that then got through (turning while manoeuvring by a
-  // table under odometry noise; back from where a way ended).
+  // A robot on plans that reach the goal that comes to the same pose by moving this many
+  // times among the last thrash_cycles poses it came to, no nearer to the goal than the first
+  // time, looks around: the views from two poses turn the map each way in turn, and each plan
+  // takes it back to the other pose (it turned to and fro in place until it timed out; after
+  // the look, the map held one way). Three times came about in missions that got through
+  // anyway, and the look changed them (a sole on a block under odometry noise, a no_path).
   int circling_arrivals = 5;
   // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
   double lost_yaw = 2.0 * M_PI / 180;
@@ -898,7 +898,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       return std::hypot(a.x - b.x, a.y - b.y) < 0.5 * fog.window.resolution &&
              std::abs(WrapAngle(a.yaw - b.yaw)) < 0.05;
     };
-    // come to this pose by moving for the circling_arrivals-th time: it goes back and forth
+    // come to this pose by moving for the circling_arrivals-th time (see there)
     const bool moved_here = arrivals.empty() || !same_pose(arrivals.back().first, believed);
     int times_here = 0;
     double nearest_then = 0;  // at the first time
@@ -955,18 +955,16 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     recent.push_back({position, nearest_to_goal});
     if (int(recent.size()) > limits.thrash_cycles) recent.pop_front();
-    const bool thrashing =
-        circling ||
-        (!plan.reaches_goal && int(recent.size()) == limits.thrash_cycles &&
-         nearest_to_goal > recent.front().second - limits.min_approach &&
-         std::all_of(recent.begin(), recent.end(), [&](const auto& r) {
-           return (r.first - recent.front().first).norm() < limits.thrash_radius;
-         }));
+    const bool thrashing = !plan.reaches_goal && int(recent.size()) == limits.thrash_cycles &&
+                           nearest_to_goal > recent.front().second - limits.min_approach &&
+                           std::all_of(recent.begin(), recent.end(), [&](const auto& r) {
+                             return (r.first - recent.front().first).norm() < limits.thrash_radius;
+                           });
     if (thrashing) {
       recent.clear();
-      arrivals.clear();
       ++thrashes;
     }
+    if (thrashing || circling) arrivals.clear();
     if (thrashes > 1) {  // the ways it finds take it back and forth
       failure = "no_path";
       failure_detail = "no_progress";
@@ -978,6 +976,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // once it went back and forth, a plan short of the goal must lead nearer than it has been
     const bool stuck = thrashes > 0 && !explore_to && !plan.reaches_goal &&
                        !leads_nearer(plan, scenario.goal, nearest_to_goal);
+    // circling on plans that reach the goal, it looks around; it does not give up for it
+    // (counted as going back and forth, a room it took through gave up: it had gone back and
+    // forth once before)
+    if (circling && !just_looked && !explore_to && moves(plan) &&
+        plan.reaches_goal) {
+      look_around_and_peek(believed);
+      continue;
+    }
     if (!moves(plan) || thrashing || stuck || (explore_to && !plan.reaches_goal)) {
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
