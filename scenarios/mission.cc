@@ -979,8 +979,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // circling on plans that reach the goal, it looks around; it does not give up for it
     // (counted as going back and forth, a room it took through gave up: it had gone back and
     // forth once before)
-    if (circling && !just_looked && !explore_to && moves(plan) &&
-        plan.reaches_goal) {
+    if (circling && !just_looked && !explore_to && moves(plan) && plan.reaches_goal) {
       look_around_and_peek(believed);
       continue;
     }

@@ -194,8 +194,8 @@ class Lattice {
   // Whether the floor's height gradient along the line of origin cells of climb c lies within
   // max_stairs_heading_error of `heading` (up or down); true where there is no gradient.
   bool FacesStep(int cell, int heading, const Climb& c) const;
-  // Whether every known floor height (not unknown or obstacle, finite) in the square of
-  // level_lo_ / level_hi_ around `cell` and the cell's own lie within a range of h_floor.
+  // Whether the known floor heights (not unknown or obstacle, finite) in the square of
+  // level_lo_ / level_hi_ around `cell`, and the cell's own, span at most h_floor.
   bool LevelAround(int cell) const;
   // Whether the standing body at `cell`, as the offsets `offsets` (body_extra_, turn_body_),
   // meets an obstacle or tunnel cell or a floor more than h_stairs above the cell's, or an
