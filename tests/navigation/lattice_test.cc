@@ -668,9 +668,10 @@ TEST(Lattice, HandsKeepOffTheLowSideOfATopsEdge) {
 
 // A standing turn in place between two valid headings is offered exactly when no cell the
 // soles' stance (grown by level_margin) sweeps on the way is an obstacle or tunnel and the
-// known floors it sweeps, the ends' included, span at most h_floor with the origin's, and costs body_touch_cost more when the body (the legs' band as deep as the
-// body rectangle and as wide as the footprint, the arms' as deep as the footprint and as wide
-// as the hands reach) sweeps an obstacle, tunnel or a floor more than h_stairs higher beyond
+// known floors it sweeps, the ends' included, span at most h_floor with the origin's, and
+// costs body_touch_cost more when the body (the legs' band as deep as the body rectangle and
+// as wide as the footprint, the arms' as deep as the footprint and as wide as the hands
+// reach) sweeps an obstacle, tunnel or a floor more than h_stairs higher beyond
 // the body at the start heading (paid for on the way there). Checked cell by cell with the
 // shapes turned in 100 steps (a cell centre moves by less than 1 mm per step); a cell whose
 // centre lies within 2 mm of a shape's edge may count either way.
