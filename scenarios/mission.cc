@@ -488,6 +488,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::ofstream trajectory(options.out_dir + "/trajectory.csv");
   if (!trajectory) throw InputError(options.out_dir + "/trajectory.csv: cannot write");
   trajectory << "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n";
+  std::ofstream cycles_csv(options.out_dir + "/cycles.csv");
+  if (!cycles_csv) throw InputError(options.out_dir + "/cycles.csv: cannot write");
+  cycles_csv << "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,decision,"
+                "target_x,target_y\n";
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
   std::unique_ptr<MissionVideo> video;
   if (!options.video_path.empty()) {
@@ -857,7 +861,43 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     explore_stalls = 0;
     ++explorations;
   };
+  // cycles.csv: per cycle where the robot believed it was, what the planner found there and
+  // what the robot did about it (a target: where it went to explore or look from)
+  struct CycleRow {
+    int cycle, step;
+    perception::Pose2 believed;
+    const char* posture;
+    const char* plan;  // goal, toward (a way short of it), here (no move) or why there is none
+    double cost, length;
+    const char* decision;
+    std::optional<Eigen::Vector2d> target;
+  };
+  std::optional<CycleRow> log_row;
+  auto log_cycle = [&]() {
+    if (!log_row) return;
+    const CycleRow& r = *log_row;
+    char row[320];
+    std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%s,%s,%.4f,%.4f,%s,", r.cycle, r.step,
+                  r.believed.x, r.believed.y, r.believed.yaw, r.posture, r.plan, r.cost,
+                  r.length, r.decision);
+    cycles_csv << row;
+    if (r.target) {
+      std::snprintf(row, sizeof(row), "%.5f,%.5f", r.target->x(), r.target->y());
+      cycles_csv << row;
+    } else {
+      cycles_csv << ",";
+    }
+    cycles_csv << "\n";
+    log_row.reset();
+  };
+  auto decide = [&](const char* decision,
+                    const std::optional<Eigen::Vector2d>& target = std::nullopt) {
+    if (!log_row) return;
+    log_row->decision = decision;
+    log_row->target = target;
+  };
   while (true) {
+    log_cycle();
     if (const std::string off = support_off_floor(); !off.empty()) {
       failure = "off_floor";
       failure_detail = off;
@@ -926,6 +966,11 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     timing["planning"].push_back(Ms(start));
     if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
+    log_row = CycleRow{cycle, controller.steps(), believed, nav::PostureName(posture),
+                       moves(plan) ? (plan.reaches_goal ? "goal" : "toward")
+                       : plan.status == nav::PlanStatus::kOk ? "here"
+                                                             : nav::NoPathReasonName(plan.reason),
+                       plan.cost, plan.length, "follow", std::nullopt};
     // exploring goes on while the map's ways to the goal come and go (they may lead through
     // cells not yet seen), until the robot is within explore_beyond of where it explores to or
     // has not got min_approach nearer to it for explore_patience cycles (nearer than where it
@@ -945,6 +990,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
         // would see only where that way goes (come side-stepping, they face the wall beside
         // the passage it came to look along)
         const bool there_to_look = inspecting && d < explore_reach;
+        if (there_to_look) decide("look_on_arrival", explore_to);
         explore_to.reset();
         inspecting = false;
         if (there_to_look) {
@@ -966,6 +1012,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     if (thrashing || circling) arrivals.clear();
     if (thrashes > 1) {  // the ways it finds take it back and forth
+      decide("give_up");
       failure = "no_path";
       failure_detail = "no_progress";
       break;
@@ -980,6 +1027,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     // (counted as going back and forth, a room it took through gave up: it had gone back and
     // forth once before)
     if (circling && !just_looked && !explore_to && moves(plan) && plan.reaches_goal) {
+      decide("circling_look");
       look_around_and_peek(believed);
       continue;
     }
@@ -987,6 +1035,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       // exploring, the robot looks ahead each cycle; it looks around, goes nearer and looks
       // afresh only once that way ends (below)
       if (!just_looked && !explore_to) {
+        decide("look_around");
         look_around_and_peek(believed);
         continue;
       }
@@ -996,6 +1045,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       const double here = (position - scenario.goal).norm();
       nav::PlanResult toward;
       bool nearer = false;
+      const char* why = "toward_goal";  // the decision, once a way is found
+      bool why_explores = false;         // ... and whether it explores to explore_to
       if (!explore_to) {
         toward = nav::PlanToward(fog, believed, scenario.goal, planner_params, posture);
         nearer =
@@ -1018,11 +1069,13 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           planner_params = unseen;
           toward = std::move(up);
           nearer = true;
+          why = "get_up";
         }
       }
       if (!nearer && !explore_to &&
           (!fresh_at || std::hypot(believed.x - fresh_at->x, believed.y - fresh_at->y) >
                             limits.fresh_look_distance)) {
+        decide("fresh_look");
         perception::FadeGrid(perception_params.map, limits.fresh_look_keep, &maps);
         look_around();
         looked_at = believed;
@@ -1038,7 +1091,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       if (!nearer && explore_to) {
         toward = nav::PlanToward(fog, believed, *explore_to, planner_params, posture);
         nearer = leads_nearer(toward, *explore_to, (position - *explore_to).norm());
+        why = "explore";
+        why_explores = true;
         if (!nearer) {
+          decide("explore_ends", explore_to);
           explore_to.reset();
           inspecting = false;
           continue;
@@ -1082,21 +1138,27 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
           nearer = true;
           peek_pending = chosen == 1;
           if (peek_pending) peek_at = peek->at;
+          why = peek_pending ? "peek" : "inspect";
+          why_explores = true;
         } else if (moves(edge)) {
           const Eigen::Vector2d end(edge.path.back().pose_G.x, edge.path.back().pose_G.y);
           start_exploring(end + (end - position).normalized() * limits.explore_beyond,
                           limits.explore_beyond, false, position);
           toward = std::move(edge);
           nearer = true;
+          why = "explore_edge";
+          why_explores = true;
         }
       }
       if (!nearer) {
+        decide("give_up");
         failure = "no_path";
         // a plan that ends where it starts: the best reachable state toward the goal is here
         failure_detail = plan.status == nav::PlanStatus::kOk ? "no_progress"
                                                              : nav::NoPathReasonName(plan.reason);
         break;
       }
+      decide(why, why_explores ? explore_to : std::nullopt);
       plan = std::move(toward);
       if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
     }
@@ -1245,6 +1307,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
                    current_move.c_str(), Ms(wall_start) / 1000);
     }
   }
+  log_cycle();
+  cycles_csv.flush();
   if (progress) std::fprintf(stderr, "\n");
 
   // scores against the ground truth

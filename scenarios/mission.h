@@ -12,7 +12,7 @@
 namespace fognav::scenarios {
 
 struct MissionOptions {
-  std::string out_dir;  // report.json, trajectory.csv, frames/, maps/
+  std::string out_dir;  // report.json, trajectory.csv, cycles.csv, frames/, maps/
   int dump_every = 0;   // write frames and maps every N cycles (0: only at the end)
   bool quiet = false;   // no progress line and no summary
   // if set, the mission as a video (.avi or .mp4): chase camera, head camera and FOG with the

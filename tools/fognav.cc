@@ -77,7 +77,8 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
               << (outcome.reached_goal ? ", goal reached" : ", goal not reached")
               << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
               << "report: " << dir << "/report.json, trajectory: " << dir
-              << "/trajectory.csv, frames: " << dir << "/frames/, maps: " << dir << "/maps/\n";
+              << "/trajectory.csv, decisions: " << dir << "/cycles.csv, frames: " << dir
+              << "/frames/, maps: " << dir << "/maps/\n";
     if (!video.empty()) std::cout << "video: " << video << "\n";
   }
   return outcome.success ? kExitOk : kExitExpectationFailed;

@@ -36,6 +36,61 @@ nlohmann::json ReadReport(const std::string& dir) {
   return nlohmann::json::parse(file);
 }
 
+// cycles.csv: the header's fields, then one row of fields per cycle.
+std::vector<std::vector<std::string>> ReadCycles(const std::string& dir) {
+  std::ifstream file(dir + "/cycles.csv");
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(file, line)) {
+    std::vector<std::string> fields;
+    std::stringstream fields_of(line);
+    std::string field;
+    while (std::getline(fields_of, field, ',')) fields.push_back(field);
+    if (!line.empty() && line.back() == ',') fields.push_back("");
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+// The decision log against the report: a row per cycle, in order, each decision one the log
+// names, and a mission that found no way gave up in its last cycle (and no other).
+void ExpectCyclesMatchReport(const std::string& dir, const nlohmann::json& report) {
+  const auto rows = ReadCycles(dir);
+  ASSERT_FALSE(rows.empty());
+  const std::vector<std::string> header = {
+      "cycle", "step", "odom_x", "odom_y", "odom_yaw", "posture", "plan", "plan_cost",
+      "plan_length", "decision", "target_x", "target_y"};
+  EXPECT_EQ(rows[0], header);
+  const int cycles = report["cycles"].get<int>();
+  ASSERT_EQ(int(rows.size()), cycles + 1);
+  const std::vector<std::string> decisions = {
+      "follow", "look_around", "look_on_arrival", "circling_look", "fresh_look", "toward_goal",
+      "get_up", "explore", "explore_ends", "inspect", "peek", "explore_edge", "give_up"};
+  int previous_step = 0;
+  for (int c = 1; c <= cycles; ++c) {
+    const auto& row = rows[size_t(c)];
+    ASSERT_EQ(row.size(), header.size()) << "cycle " << c;
+    EXPECT_EQ(std::stoi(row[0]), c);
+    EXPECT_GE(std::stoi(row[1]), previous_step);
+    previous_step = std::stoi(row[1]);
+    EXPECT_NE(std::find(decisions.begin(), decisions.end(), row[9]), decisions.end()) << row[9];
+    // exploring and looking from afar name where to; the rest name no target
+    const bool targeted = row[9] == "explore" || row[9] == "inspect" || row[9] == "peek" ||
+                          row[9] == "explore_edge" || row[9] == "explore_ends" ||
+                          row[9] == "look_on_arrival";
+    EXPECT_EQ(!row[10].empty(), targeted) << "cycle " << c << " " << row[9];
+    const bool last = c == cycles;
+    EXPECT_EQ(row[9] == "give_up", last && report["failure"] == "no_path") << "cycle " << c;
+  }
+  EXPECT_LE(previous_step, report["steps"].get<int>());
+  // no way: it looked around again before it gave up
+  if (report["failure"] == "no_path") {
+    EXPECT_TRUE(std::any_of(rows.begin() + 1, rows.end(), [](const auto& row) {
+      return row[9] == "look_around" || row[9] == "fresh_look";
+    }));
+  }
+}
+
 class Suite : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Suite, MeetsItsExpectations) {
@@ -52,6 +107,7 @@ TEST_P(Suite, MeetsItsExpectations) {
   EXPECT_TRUE(std::filesystem::exists(out + "/trajectory.csv"));
   EXPECT_TRUE(std::filesystem::exists(out + "/maps/final_plan.png"));
   EXPECT_TRUE(std::filesystem::exists(out + "/frames/final_left.png"));
+  ExpectCyclesMatchReport(out, report);
   if (name == "stairs_and_table") {
     // issue 7's target: at most 1.3 times the planner's path on the ground-truth FOG
     EXPECT_LE(report["path_length"].get<double>(),
@@ -103,11 +159,14 @@ TEST(Mission, SameScenarioAndSeedGiveTheSameReport) {
     report->erase("timing_ms");
   }
   EXPECT_EQ(first.dump(2), second.dump(2));
-  std::ifstream a(first_out + "/trajectory.csv"), b(second_out + "/trajectory.csv");
-  std::stringstream ta, tb;
-  ta << a.rdbuf();
-  tb << b.rdbuf();
-  EXPECT_EQ(ta.str(), tb.str());
+  for (const char* log : {"/trajectory.csv", "/cycles.csv"}) {
+    std::ifstream a(first_out + log), b(second_out + log);
+    std::stringstream ta, tb;
+    ta << a.rdbuf();
+    tb << b.rdbuf();
+    EXPECT_FALSE(ta.str().empty()) << log;
+    EXPECT_EQ(ta.str(), tb.str()) << log;
+  }
 }
 
 // The stair-climbing module places the feet from the measured tread edges, wherever the
