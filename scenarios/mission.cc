@@ -491,7 +491,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::ofstream cycles_csv(options.out_dir + "/cycles.csv");
   if (!cycles_csv) throw InputError(options.out_dir + "/cycles.csv: cannot write");
   cycles_csv << "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,decision,"
-                "target_x,target_y\n";
+                "target_x,target_y,explorations,thrashes\n";
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
   std::unique_ptr<MissionVideo> video;
   if (!options.video_path.empty()) {
@@ -862,7 +862,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     ++explorations;
   };
   // cycles.csv: per cycle where the robot believed it was, what the planner found there and
-  // what the robot did about it (a target: where it went to explore or look from)
+  // what the robot did about it (a target: where it went to explore or look from), with the
+  // explorations and the times it went back and forth so far, after the decision
   struct CycleRow {
     int cycle, step;
     perception::Pose2 believed;
@@ -887,7 +888,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     } else {
       cycles_csv << ",";
     }
-    cycles_csv << "\n";
+    cycles_csv << "," << explorations << "," << thrashes << "\n";
     log_row.reset();
   };
   auto decide = [&](const char* decision,

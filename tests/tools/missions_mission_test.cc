@@ -59,14 +59,14 @@ void ExpectCyclesMatchReport(const std::string& dir, const nlohmann::json& repor
   ASSERT_FALSE(rows.empty());
   const std::vector<std::string> header = {
       "cycle", "step", "odom_x", "odom_y", "odom_yaw", "posture", "plan", "plan_cost",
-      "plan_length", "decision", "target_x", "target_y"};
+      "plan_length", "decision", "target_x", "target_y", "explorations", "thrashes"};
   EXPECT_EQ(rows[0], header);
   const int cycles = report["cycles"].get<int>();
   ASSERT_EQ(int(rows.size()), cycles + 1);
   const std::vector<std::string> decisions = {
       "follow", "look_around", "look_on_arrival", "circling_look", "fresh_look", "toward_goal",
       "get_up", "explore", "explore_ends", "inspect", "peek", "explore_edge", "give_up"};
-  int previous_step = 0;
+  int previous_step = 0, previous_explorations = 0;
   for (int c = 1; c <= cycles; ++c) {
     const auto& row = rows[size_t(c)];
     ASSERT_EQ(row.size(), header.size()) << "cycle " << c;
@@ -74,6 +74,12 @@ void ExpectCyclesMatchReport(const std::string& dir, const nlohmann::json& repor
     EXPECT_GE(std::stoi(row[1]), previous_step);
     previous_step = std::stoi(row[1]);
     EXPECT_NE(std::find(decisions.begin(), decisions.end(), row[9]), decisions.end()) << row[9];
+    // a mission explores at most four times; starting to is counted in its row
+    const int explorations = std::stoi(row[12]);
+    EXPECT_LE(explorations, 4);
+    const bool starts = row[9] == "inspect" || row[9] == "peek" || row[9] == "explore_edge";
+    EXPECT_EQ(explorations, previous_explorations + (starts ? 1 : 0)) << "cycle " << c;
+    previous_explorations = explorations;
     // exploring and looking from afar name where to; the rest name no target
     const bool targeted = row[9] == "explore" || row[9] == "inspect" || row[9] == "peek" ||
                           row[9] == "explore_edge" || row[9] == "explore_ends" ||
