@@ -46,7 +46,6 @@ std::vector<std::vector<std::string>> ReadCycles(const std::string& dir) {
     std::stringstream fields_of(line);
     std::string field;
     while (std::getline(fields_of, field, ',')) fields.push_back(field);
-    if (!line.empty() && line.back() == ',') fields.push_back("");
     rows.push_back(fields);
   }
   return rows;
