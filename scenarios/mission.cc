@@ -877,18 +877,13 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   auto log_cycle = [&]() {
     if (!log_row) return;
     const CycleRow& r = *log_row;
-    char row[320];
-    std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%s,%s,%.4f,%.4f,%s,", r.cycle, r.step,
-                  r.believed.x, r.believed.y, r.believed.yaw, r.posture, r.plan, r.cost,
-                  r.length, r.decision);
+    char target[64] = ",";
+    if (r.target) std::snprintf(target, sizeof(target), "%.5f,%.5f", r.target->x(), r.target->y());
+    char row[384];
+    std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%s,%s,%.4f,%.4f,%s,%s,%d,%d\n",
+                  r.cycle, r.step, r.believed.x, r.believed.y, r.believed.yaw, r.posture, r.plan,
+                  r.cost, r.length, r.decision, target, explorations, thrashes);
     cycles_csv << row;
-    if (r.target) {
-      std::snprintf(row, sizeof(row), "%.5f,%.5f", r.target->x(), r.target->y());
-      cycles_csv << row;
-    } else {
-      cycles_csv << ",";
-    }
-    cycles_csv << "," << explorations << "," << thrashes << "\n";
     log_row.reset();
   };
   auto decide = [&](const char* decision,
@@ -1309,7 +1304,6 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
   }
   log_cycle();
-  cycles_csv.flush();
   if (progress) std::fprintf(stderr, "\n");
 
   // scores against the ground truth
