@@ -310,7 +310,7 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
   }
 
   if (const YAML::Node sensor = root["sensor"]) {
-    r.Map(sensor, "sensor", {"width", "height", "hfov_deg", "baseline", "depth"});
+    r.Map(sensor, "sensor", {"width", "height", "hfov_deg", "baseline", "depth", "pixel_samples"});
     if (sensor["width"]) s.sensor.width_px = r.Integer(sensor["width"], "sensor.width", 16);
     if (sensor["height"]) s.sensor.height_px = r.Integer(sensor["height"], "sensor.height", 16);
     if (s.sensor.width_px > sim::kMaxViewWidth || s.sensor.height_px > sim::kMaxViewHeight) {
@@ -335,6 +335,23 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
         s.sensor.depth = DepthMode::kIdeal;
       } else {
         r.Fail(sensor["depth"], "sensor.depth", "expected stereo or ideal, got '" + depth + "'");
+      }
+    }
+    if (const YAML::Node samples = sensor["pixel_samples"]) {
+      s.sensor.pixel_samples = r.Integer(samples, "sensor.pixel_samples", 1);
+      const int k = s.sensor.pixel_samples;
+      if (k > kMaxPixelSamples) {
+        r.Fail(samples, "sensor.pixel_samples",
+               "expected 1 to " + std::to_string(kMaxPixelSamples) + " samples per pixel side, got " +
+                   std::to_string(k));
+      }
+      if (k * s.sensor.width_px > sim::kMaxViewWidth || k * s.sensor.height_px > sim::kMaxViewHeight) {
+        r.Fail(samples, "sensor.pixel_samples",
+               std::to_string(k) + " samples per pixel side of a " + std::to_string(s.sensor.width_px) +
+                   "x" + std::to_string(s.sensor.height_px) + " image render " +
+                   std::to_string(k * s.sensor.width_px) + "x" + std::to_string(k * s.sensor.height_px) +
+                   " pixels; at most " + std::to_string(sim::kMaxViewWidth) + "x" +
+                   std::to_string(sim::kMaxViewHeight) + " are supported");
       }
     }
   }

@@ -70,7 +70,13 @@ struct SensorSettings {
   double hfov = 0.785398163397448;  // horizontal field of view, rad (45 deg)
   double baseline = 0.05;           // metres
   DepthMode depth = DepthMode::kStereo;
+  // Samples per pixel side of the stereo images: 1 renders each pixel at its centre, k > 1
+  // gathers its area from k x k points (sim::RenderRequest::pixel_samples), as a camera's
+  // pixel does. Point samples alias texture finer than a pixel differently in each eye.
+  int pixel_samples = 1;
 };
+
+constexpr int kMaxPixelSamples = 4;
 
 // What a mission is expected to show; unset fields are not checked.
 struct Expectations {

@@ -57,11 +57,12 @@ StereoView RenderStereo(sim::Renderer* renderer, const sim::World& world,
     return image;
   };
   auto left_camera = sim::PinholeCamera::FromFov(X_WL, w, h, sensor.hfov);
-  sim::RenderedView left = renderer->Render(world.model(), world.data(), left_camera);
+  sim::RenderedView left = renderer->Render(world.model(), world.data(), left_camera,
+                                            {true, true, sensor.pixel_samples});
   auto right_camera = left_camera;
   right_camera.X_WC = X_WL * Eigen::Translation3d(sensor.baseline, 0, 0);
-  sim::RenderedView right =
-      renderer->Render(world.model(), world.data(), right_camera, {false, false});
+  sim::RenderedView right = renderer->Render(world.model(), world.data(), right_camera,
+                                             {false, false, sensor.pixel_samples});
   view.left = to_rgb(left);
   view.right = to_rgb(right);
   view.depth.width = view.surfaces.width = w;

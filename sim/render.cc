@@ -3,6 +3,7 @@
 #include <GL/osmesa.h>
 #include <dlfcn.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -169,20 +170,39 @@ RenderedView Renderer::Render(const mjModel* m, const mjData* d, const PinholeCa
   view.width = w;
   view.height = h;
   view.rgb.resize(size_t(w) * h * 3);
-  impl_->rgb_flipped.resize(size_t(w) * h * 3);
   impl_->depth_flipped.resize(size_t(w) * h);
 
-  // colour and depth pass
+  // colour pass at k x k samples per pixel, each pixel the mean of its samples (the rows come
+  // bottom to top); with one sample it also gives the depth
+  const int k = std::max(1, std::min({request.pixel_samples, impl_->context.offWidth / w,
+                                      impl_->context.offHeight / h}));
+  const bool need_depth = request.depth || request.surfaces;
   scn.flags[mjRND_SEGMENT] = 0;
   scn.flags[mjRND_IDCOLOR] = 0;
-  mjr_render(viewport, &scn, &impl_->context);
-  mjr_readPixels(impl_->rgb_flipped.data(), request.depth || request.surfaces ? impl_->depth_flipped.data() : nullptr,
-                 viewport, &impl_->context);
+  const mjrRect sample_viewport = {0, 0, k * w, k * h};
+  impl_->rgb_flipped.resize(size_t(k * w) * (k * h) * 3);
+  mjr_render(sample_viewport, &scn, &impl_->context);
+  mjr_readPixels(impl_->rgb_flipped.data(), need_depth && k == 1 ? impl_->depth_flipped.data() : nullptr,
+                 sample_viewport, &impl_->context);
+  const int samples = k * k;
   for (int v = 0; v < h; ++v) {
-    std::memcpy(&view.rgb[size_t(v) * w * 3], &impl_->rgb_flipped[size_t(h - 1 - v) * w * 3],
-                size_t(w) * 3);
+    for (int u = 0; u < w; ++u) {
+      for (int c = 0; c < 3; ++c) {
+        int sum = 0;
+        for (int row = (h - 1 - v) * k; row < (h - v) * k; ++row) {
+          for (int col = u * k; col < (u + 1) * k; ++col) {
+            sum += impl_->rgb_flipped[(size_t(row) * k * w + col) * 3 + c];
+          }
+        }
+        view.rgb[(size_t(v) * w + u) * 3 + c] = uint8_t((sum + samples / 2) / samples);
+      }
+    }
   }
-  if (request.depth || request.surfaces) {
+  if (need_depth && k > 1) {
+    mjr_render(viewport, &scn, &impl_->context);
+    mjr_readPixels(nullptr, impl_->depth_flipped.data(), viewport, &impl_->context);
+  }
+  if (need_depth) {
     // OpenGL depth buffer value z in [0, 1] to metric depth along the optical axis
     view.depth.resize(size_t(w) * h);
     for (int v = 0; v < h; ++v) {

@@ -52,6 +52,11 @@ struct RenderedView {
 struct RenderRequest {
   bool depth = true;
   bool surfaces = true;
+  // Colour as a camera's pixel gathers it, over its area: the mean of pixel_samples^2 points
+  // spread evenly over each pixel instead of its centre alone. Point samples alias texture finer
+  // than a pixel, differently in each eye. Lowered as far as needed to fit the offscreen buffer;
+  // depth and surface ids stay those of the pixel centres.
+  int pixel_samples = 1;
 };
 
 // Owns an OSMesa context and MuJoCo's rendering context for one model. Not copyable; one

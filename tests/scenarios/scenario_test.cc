@@ -48,6 +48,11 @@ TEST(Scenario, ParsesAValidFileWithDefaultsAndRadians) {
   EXPECT_EQ(s.sensor.width_px, 176);
   EXPECT_NEAR(s.sensor.hfov, M_PI / 4, 1e-12);
   EXPECT_EQ(s.sensor.depth, DepthMode::kStereo);
+  EXPECT_EQ(s.sensor.pixel_samples, 1);
+  EXPECT_EQ(ParseScenario(Replace(kValid, "name: unit", "name: unit\nsensor: {pixel_samples: 3}"),
+                          "course.yaml")
+                .sensor.pixel_samples,
+            3);
   EXPECT_EQ(s.max_cycles, 600);
   ASSERT_EQ(s.objects.size(), 3u);
   const auto& table = std::get<TableObject>(s.objects[2]);
@@ -132,6 +137,14 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"name: unit", "name: unit\nsensor: {width: 1281}",
                  "course.yaml:2: sensor: images up to 1280x1024 pixels are supported, got "
                  "1281x144"},
+        // pixel samples: at least one, at most four per side, and within the buffer
+        BadInput{"name: unit", "name: unit\nsensor: {pixel_samples: 0}",
+                 "course.yaml:2: sensor.pixel_samples: expected an integer from 1 to 1e9"},
+        BadInput{"name: unit", "name: unit\nsensor: {pixel_samples: 5}",
+                 "course.yaml:2: sensor.pixel_samples: expected 1 to 4 samples per pixel side, got 5"},
+        BadInput{"name: unit", "name: unit\nsensor: {width: 640, height: 480, pixel_samples: 3}",
+                 "course.yaml:2: sensor.pixel_samples: 3 samples per pixel side of a 640x480 image "
+                 "render 1920x1440 pixels; at most 1280x1024 are supported"},
         // goal and start off the floor
         BadInput{"position: [3.0, 0.0]", "position: [9.0, 0.0]",
                  "course.yaml:5: goal.position: the goal is off the floor"},
