@@ -476,6 +476,9 @@ std::string Summary(const Scenario& s) {
       << (s.goal - Eigen::Vector2d(s.start.x, s.start.y)).norm() << " m away, sensor "
       << s.sensor.width_px << "x" << s.sensor.height_px << " "
       << (s.sensor.depth == DepthMode::kStereo ? "stereo" : "ideal");
+  if (s.sensor.pixel_samples > 1) {
+    out << ", " << s.sensor.pixel_samples << "x" << s.sensor.pixel_samples << " samples per pixel";
+  }
   return out.str();
 }
 

@@ -49,10 +49,11 @@ TEST(Scenario, ParsesAValidFileWithDefaultsAndRadians) {
   EXPECT_NEAR(s.sensor.hfov, M_PI / 4, 1e-12);
   EXPECT_EQ(s.sensor.depth, DepthMode::kStereo);
   EXPECT_EQ(s.sensor.pixel_samples, 1);
-  EXPECT_EQ(ParseScenario(Replace(kValid, "name: unit", "name: unit\nsensor: {pixel_samples: 3}"),
-                          "course.yaml")
-                .sensor.pixel_samples,
-            3);
+  const Scenario sampled =
+      ParseScenario(Replace(kValid, "name: unit", "name: unit\nsensor: {pixel_samples: 3}"), "course.yaml");
+  EXPECT_EQ(sampled.sensor.pixel_samples, 3);
+  EXPECT_NE(Summary(sampled).find("sensor 176x144 stereo, 3x3 samples per pixel"), std::string::npos);
+  EXPECT_EQ(Summary(s).find("samples"), std::string::npos);
   EXPECT_EQ(s.max_cycles, 600);
   ASSERT_EQ(s.objects.size(), 3u);
   const auto& table = std::get<TableObject>(s.objects[2]);
