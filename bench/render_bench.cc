@@ -1,4 +1,5 @@
-// StereoRender/<size>: one stereo pair with left depth and surface ids, off-screen through OSMesa.
+// StereoRender/<size>: one stereo pair with left depth and surface ids, off-screen through OSMesa;
+// StereoRender/176x144/samples3 with each pixel gathered from 3 x 3 samples (sensor.pixel_samples).
 #include <benchmark/benchmark.h>
 
 #include "scenarios/scenario.h"
@@ -8,7 +9,7 @@ namespace {
 
 using fognav::scenarios::ParseScenario;
 
-void BM_StereoRender(benchmark::State& state, int width, int height) {
+void BM_StereoRender(benchmark::State& state, int width, int height, int pixel_samples) {
   // a small course: floor, a box, a staircase and a table in front of the camera
   const char* kYaml = R"(
 name: bench
@@ -25,6 +26,7 @@ world:
   auto scenario = ParseScenario(kYaml, "bench");
   scenario.sensor.width_px = width;
   scenario.sensor.height_px = height;
+  scenario.sensor.pixel_samples = pixel_samples;
   fognav::sim::World world(fognav::scenarios::MakeWorldSpec(scenario, /*with_robot=*/false));
   fognav::sim::Renderer renderer(world.model());
   Eigen::Isometry3d X_WL = Eigen::Isometry3d::Identity();
@@ -38,14 +40,20 @@ world:
 }
 // real time: llvmpipe renders on worker threads, so the calling thread's CPU time understates it;
 // five repetitions so the median is printed
-BENCHMARK_CAPTURE(BM_StereoRender, 176x144, 176, 144)
+BENCHMARK_CAPTURE(BM_StereoRender, 176x144, 176, 144, 1)
     ->Name("StereoRender/176x144")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Repetitions(5)
     ->ReportAggregatesOnly(true);
-BENCHMARK_CAPTURE(BM_StereoRender, 352x288, 352, 288)
+BENCHMARK_CAPTURE(BM_StereoRender, 352x288, 352, 288, 1)
     ->Name("StereoRender/352x288")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Repetitions(5)
+    ->ReportAggregatesOnly(true);
+BENCHMARK_CAPTURE(BM_StereoRender, 176x144_samples3, 176, 144, 3)
+    ->Name("StereoRender/176x144/samples3")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Repetitions(5)
