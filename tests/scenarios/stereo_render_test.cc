@@ -16,7 +16,7 @@ struct FarMatches {
   int off = 0;    // of them, off by more than 0.3 px (a wall 2.5 m away moves 0.2 m)
 };
 
-// The course's far surfaces from three standing poses at its start, the eyes level.
+// The course's far surfaces from three standing poses at its start.
 FarMatches CountFarMatches(int pixel_samples) {
   Scenario scenario = LoadScenario("scenarios/stairs_and_table.yaml");
   scenario.sensor.pixel_samples = pixel_samples;

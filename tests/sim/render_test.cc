@@ -207,7 +207,6 @@ TEST(Render, IntrinsicsReprojectAKnownPointWithinHalfAPixel) {
   EXPECT_NEAR(view.depth[size_t(v) * view.width + u_first + 2], 1.5, 0.002);
 }
 
-
 // With pixel_samples k each pixel gathers its whole area: it is the mean of the k x k pixels of
 // a view k times as fine of the same field, while depth and surface ids stay those of the pixel
 // centres. A box turned 30 degrees in front of the floor gives edges and texture finer than a
