@@ -32,14 +32,18 @@ WorldBox Box(const std::string& name, const Eigen::Vector3d& center, const Eigen
   return box;
 }
 
-// A wall whose face lies at x = 1.0 exactly, seen head-on from the eyes' height at 176x144.
-WorldSpec WallAtOneMetre() {
+// A world without the robot: the floor centred 2 m ahead of the origin and one box.
+WorldSpec OneBoxWorld(const WorldBox& box) {
   WorldSpec spec;
   spec.with_robot = false;
   spec.floor_center = {2, 0};
-  spec.boxes.push_back(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0}));
+  spec.boxes.push_back(box);
   return spec;
 }
+
+// A wall whose face lies at x = 1.0 exactly, seen head-on from the eyes' height at 176x144.
+WorldSpec WallAtOneMetre() { return OneBoxWorld(Box("wall", {1.25, 0, 1.0}, {0.25, 2.0, 1.0})); }
+
 RenderedView ViewAlongX(const World& world) {
   Renderer renderer(world.model());
   auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
@@ -97,12 +101,8 @@ TEST(Render, ABoxSideFaceIsTexturedAlongBothImageAxes) {
 }
 
 TEST(Render, SurfaceIdsNameTheFacesOfABox) {
-  WorldSpec spec;
-  spec.with_robot = false;
-  spec.floor_center = {2, 0};
   // a box turned 45 degrees: the camera sees its -x and +y faces side by side, and its top
-  spec.boxes.push_back(Box("cube", {1.5, 0, 0.15}, {0.15, 0.15, 0.15}, M_PI / 4));
-  World world(spec);
+  World world(OneBoxWorld(Box("cube", {1.5, 0, 0.15}, {0.15, 0.15, 0.15}, M_PI / 4)));
   Renderer renderer(world.model());
   auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
   RenderedView view = renderer.Render(world.model(), world.data(), camera);
@@ -136,14 +136,10 @@ TEST(Render, SurfaceIdsNameTheFacesOfABox) {
 // least 4 grey levels (rendered: 11 to 27).
 TEST(Render, EverySurfaceIsTexturedNearAndFar) {
   for (double distance : {0.3, 2.5}) {
-    WorldSpec spec;
-    spec.with_robot = false;
-    spec.floor_center = {2, 0};
     // a box turned 30 degrees: two side faces and the top in view
     const double half = distance < 1 ? 0.05 : 0.3;
-    spec.boxes.push_back(Box("cube", {distance + half * 1.5, 0, half}, {half, half, half},
-                             M_PI / 6));
-    World world(spec);
+    World world(
+        OneBoxWorld(Box("cube", {distance + half * 1.5, 0, half}, {half, half, half}, M_PI / 6)));
     Renderer renderer(world.model());
     Eigen::Isometry3d X_WC = LookAlongX(distance < 1 ? 0.2 : 0.9);
     X_WC.linear() = X_WC.linear() * Eigen::AngleAxisd(-0.35, Eigen::Vector3d::UnitX()).matrix();
@@ -174,12 +170,8 @@ TEST(Render, EverySurfaceIsTexturedNearAndFar) {
 }
 
 TEST(Render, IntrinsicsReprojectAKnownPointWithinHalfAPixel) {
-  WorldSpec spec;
-  spec.with_robot = false;
-  spec.floor_center = {2, 0};
   // a small marker box; its top-front corner is a known 3D point
-  spec.boxes.push_back(Box("marker", {1.6, 0.25, 0.35}, {0.1, 0.1, 0.05}));
-  World world(spec);
+  World world(OneBoxWorld(Box("marker", {1.6, 0.25, 0.35}, {0.1, 0.1, 0.05})));
   Renderer renderer(world.model());
   // an off-centre principal point and a non-square image exercise the frustum
   PinholeCamera camera = PinholeCamera::FromFov(LookAlongX(0.45), 200, 120, 0.9);
@@ -212,11 +204,7 @@ TEST(Render, IntrinsicsReprojectAKnownPointWithinHalfAPixel) {
 // centres. A box turned 30 degrees in front of the floor gives edges and texture finer than a
 // pixel.
 TEST(Render, PixelSamplesAverageTheirPixelsArea) {
-  WorldSpec spec;
-  spec.with_robot = false;
-  spec.floor_center = {2, 0};
-  spec.boxes.push_back(Box("cube", {1.8, 0.1, 0.25}, {0.25, 0.25, 0.25}, M_PI / 6));
-  World world(spec);
+  World world(OneBoxWorld(Box("cube", {1.8, 0.1, 0.25}, {0.25, 0.25, 0.25}, M_PI / 6)));
   Renderer renderer(world.model());
   const Eigen::Isometry3d X_WC = LookAlongX(0.5);
   const int w = 176, h = 144, k = 3;
