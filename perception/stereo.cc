@@ -47,36 +47,39 @@ cv::Mat GreyFloat(const RgbImage& image) {
   return grey;
 }
 
-// Sub-pixel refinement of a disparity d0 at (u, v) by Gauss-Newton on the sum of squared
-// differences over a window, sampling the right image linearly along its row: minimises
-// sum (L(x) - R(x - d))^2, step = -sum e g / sum g^2 with e = L - R(x - d), g = R_x(x - d).
-// Returns NaN if the refinement leaves [d0 - 1, d0 + 1] or the window has no texture.
-float RefineDisparity(const cv::Mat& left, const cv::Mat& right, const cv::Mat& right_dx, int u,
-                      int v, float d0, int half, int iterations) {
-  const int w = left.cols, h = left.rows;
+// Sub-pixel refinement of a disparity d0 by Gauss-Newton on the sum of squared differences over
+// a window around (u, v) of the reference image `ref`, sampling `other` linearly along its row
+// at x + sign d: the left image as the reference has its match in the right image at x - d
+// (sign -1), the right image as the reference in the left one at x + d (sign +1). Minimises
+// sum (ref(x) - other(x + sign d))^2: step = sign sum e g / sum g^2 with e = ref - other and
+// g = other_x at x + sign d. Returns NaN if the refinement leaves [d0 - 1, d0 + 1] or the window
+// has no texture.
+float RefineDisparity(const cv::Mat& ref, const cv::Mat& other, const cv::Mat& other_dx, int sign,
+                      int u, int v, float d0, int half, int iterations) {
+  const int w = ref.cols, h = ref.rows;
   double d = d0;
   for (int it = 0; it < iterations; ++it) {
-    // uu - d = (uu - shift) + t with a whole shift and 0 <= t < 1, the same for the window
-    const int shift = int(std::ceil(d));
-    const float t = float(shift - d), s = 1 - t;
-    const int ub = std::max({u - half, 0, shift});
-    const int ue = std::min({u + half, w - 1, w - 2 + shift});
+    // x + sign d = (x + shift) + t with a whole shift and 0 <= t < 1, the same for the window
+    const int shift = int(std::floor(sign * d));
+    const float t = float(sign * d - shift), s = 1 - t;
+    const int ub = std::max({u - half, 0, -shift});
+    const int ue = std::min({u + half, w - 1, w - 2 - shift});
     double seg = 0, sgg = 0;
     for (int vv = std::max(v - half, 0); vv <= std::min(v + half, h - 1); ++vv) {
-      const float* l = left.ptr<float>(vv);
-      const float* r = right.ptr<float>(vv);
-      const float* g = right_dx.ptr<float>(vv);
+      const float* r = ref.ptr<float>(vv);
+      const float* o = other.ptr<float>(vv);
+      const float* g = other_dx.ptr<float>(vv);
       for (int uu = ub; uu <= ue; ++uu) {
-        const int x0 = uu - shift;
-        const float rv = s * r[x0] + t * r[x0 + 1];
+        const int x0 = uu + shift;
+        const float ov = s * o[x0] + t * o[x0 + 1];
         const float gv = s * g[x0] + t * g[x0 + 1];
-        const float e = l[uu] - rv;
+        const float e = r[uu] - ov;
         seg += e * gv;
         sgg += gv * gv;
       }
     }
     if (!(sgg > 1e-6)) return std::numeric_limits<float>::quiet_NaN();
-    const double step = std::clamp(-double(seg) / sgg, -0.5, 0.5);
+    const double step = std::clamp(sign * double(seg) / sgg, -0.5, 0.5);
     d += step;
     if (std::abs(d - d0) > 1.0) return std::numeric_limits<float>::quiet_NaN();
     if (std::abs(step) < 1e-3) break;
@@ -131,11 +134,14 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
   }
 
   // sub-pixel refinement on the grey images (SGBM's interpolation locks towards whole pixels)
-  cv::Mat gl, gr, gr_dx;
-  if (p.refine_iterations > 0) {
+  cv::Mat gl, gr, gl_dx, gr_dx;
+  const bool refine = p.refine_iterations > 0;
+  const bool check_refined = refine && p.refine_left_right_tolerance > 0;
+  if (refine) {
     gl = GreyFloat(left);
     gr = GreyFloat(right);
     cv::Sobel(gr, gr_dx, CV_32F, 1, 0, 1, 0.5);  // central difference
+    if (check_refined) cv::Sobel(gl, gl_dx, CV_32F, 1, 0, 1, 0.5);
   }
 
   // triangulate: z = f B / disparity, x = (u - cx) z / fx, y = (v - cy) z / fy
@@ -147,16 +153,26 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
       const int raw = row[u];
       if (raw <= 0) continue;
       double disp = raw / 16.0;
-      if (p.refine_iterations > 0) {
-        disp = RefineDisparity(gl, gr, gr_dx, u, v, float(disp), p.refine_window / 2,
+      if (refine) {
+        disp = RefineDisparity(gl, gr, gr_dx, -1, u, v, float(disp), p.refine_window / 2,
                                p.refine_iterations);
         if (!std::isfinite(disp)) continue;
       }
       if (disp < min_disp) continue;
+      // the disparity image keeps what the check below drops: DepthEdgeRims reads the edges
+      // of nearer surfaces from it
+      if (disparity_px) disparity_px->at(u, v) = float(disp);
+      if (check_refined) {
+        // the same match refined from the right image's window (StereoParams)
+        const int ur = int(std::lround(u - disp));
+        const float back = ur < 0 ? kNaN
+                                  : RefineDisparity(gr, gl, gl_dx, +1, ur, v, float(disp),
+                                                    p.refine_window / 2, p.refine_iterations);
+        if (!(std::abs(back - disp) <= p.refine_left_right_tolerance)) continue;
+      }
       const double z = fb / disp;
       points.at(u, v) = Eigen::Vector3f(float((u - K.cx) * z / K.fx),
                                         float((v - K.cy) * z / K.fy), float(z));
-      if (disparity_px) disparity_px->at(u, v) = float(disp);
     }
   }
   return points;

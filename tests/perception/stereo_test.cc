@@ -1,5 +1,6 @@
 // Stereo matching and point images on analytic textured scenes (no renderer).
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -204,6 +205,50 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   int unmarked = 0;
   for (uint8_t r : DepthEdgeRims(disparity, no_margin).data) unmarked += r;
   EXPECT_EQ(unmarked, 0);
+}
+
+// The refined left-right check (StereoParams::refine_left_right_tolerance) on the posts in
+// front of the wall above and on a floor seen from a standing robot's eyes: the share of points
+// off by more than 0.3 px (on the posts' sides the matching block covers post and wall; a far
+// floor's texture is finer than the pixels) falls, and the points of the plain surfaces stay.
+TEST(Stereo, RefinedLeftRightCheckDropsPointsOffBySubPixels) {
+  Scene posts;
+  posts.floor = false;
+  posts.boxes.push_back({Eigen::Vector3d(3.0, -20, -20), Eigen::Vector3d(4.0, 20, 20)});
+  posts.boxes.push_back({Eigen::Vector3d(1.2, -0.4, -20), Eigen::Vector3d(1.3, -0.1, 20)});
+  posts.boxes.push_back({Eigen::Vector3d(1.2, 0.1, -20), Eigen::Vector3d(1.3, 0.4, 20)});
+  Scene floor;  // the floor plane only, the eyes 0.5 m above it looking 0.4 rad down
+  const auto K = SceneIntrinsics(176, 144);
+  struct Counts {
+    int points = 0, off = 0;
+  };
+  auto count = [&](const Scene& scene, const Eigen::Isometry3d& X_WC, double tolerance) {
+    RgbImage left, right;
+    RenderStereoPair(scene, K, X_WC, &left, &right);
+    const SceneView truth = RenderScene(scene, K, X_WC);
+    StereoParams p;
+    p.refine_left_right_tolerance = tolerance;
+    const PointImage points = StereoPointImage(left, right, K, p);
+    const double fB = K.fx * K.baseline;
+    Counts c;
+    for (size_t i = 0; i < points.points.size(); ++i) {
+      const Eigen::Vector3f& q = points.points[i];
+      if (!PointImage::Valid(q) || !std::isfinite(truth.depth.data[i])) continue;
+      ++c.points;
+      c.off += std::abs(fB / q.z() - fB / truth.depth.data[i]) > 0.3;
+    }
+    return c;
+  };
+  for (const auto& [name, scene, X_WC] :
+       {std::tuple<const char*, Scene, Eigen::Isometry3d>{"posts", posts, SceneCamera(0, 0, 0, 0)},
+        {"floor", floor, SceneCamera(0, 0, 0.5, 0.4)}}) {
+    const Counts off = count(scene, X_WC, 0.0), on = count(scene, X_WC, 0.3);
+    std::printf("%s: %d of %d points off by more than 0.3 px without the check, %d of %d with\n",
+                name, off.off, off.points, on.off, on.points);
+    EXPECT_GT(off.off, 50) << name;  // the effect is there
+    EXPECT_LT(double(on.off) / on.points, 0.7 * double(off.off) / off.points) << name;
+    EXPECT_GT(on.points, 0.9 * off.points) << name;
+  }
 }
 
 // The same up and down the image: a crawling robot's eyes 0.15 m below a table top that ends
