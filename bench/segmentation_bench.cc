@@ -134,13 +134,16 @@ BENCHMARK(BM_SegmentationHeadStereoNoise)
 BENCHMARK(BM_SegmentationHeadStereoNoise)
     ->Name("SegmentationHeadNoise/176x144/ray_noise")->Arg(1)->Unit(benchmark::kMillisecond);
 
+// range(2): StereoParams::refine_left_right_tolerance in hundredths of a pixel
 void BM_Stereo(benchmark::State& state) {
   const auto K = internal::SceneIntrinsics(int(state.range(0)), int(state.range(1)));
   RgbImage left, right;
   internal::RenderStereoPair(BenchScene(), K, BenchCamera(), &left, &right);
+  StereoParams params;
+  params.refine_left_right_tolerance = 0.01 * double(state.range(2));
   PointImage points;
   for (auto _ : state) {
-    points = StereoPointImage(left, right, K);
+    points = StereoPointImage(left, right, K, params);
     benchmark::DoNotOptimize(points.points.data());
   }
   // segmentation of the matched points, scored against the scene
@@ -148,7 +151,11 @@ void BM_Stereo(benchmark::State& state) {
   in.truth = internal::RenderScene(BenchScene(), K, BenchCamera());
   SetScoreCounters(state, SegmentPlanes(points).labels, in);
 }
-BENCHMARK(BM_Stereo)->Name("Stereo/176x144")->Args({176, 144})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Stereo)->Name("Stereo/176x144")->Args({176, 144, 0})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Stereo)
+    ->Name("Stereo/176x144/refined_check")
+    ->Args({176, 144, 30})
+    ->Unit(benchmark::kMillisecond);
 
 #ifdef FOGNAV_HAVE_OPENCV_RGBD
 // OpenCV's plane finder (cv::rgbd::RgbdPlane with RgbdNormals) on the same point images; the
