@@ -150,16 +150,21 @@ RimCounts CountAgainstRims(const Scene& scene, const Eigen::Isometry3d& X_WC,
   return c;
 }
 
-// Two posts 0.2 m apart at 1.2 m in front of a wall at 3 m. Near the posts' sides the matching
-// block covers post and wall, and the nearer post wins: wall pixels beside a post take its
-// disparity (foreground fattening), which would put phantom obstacles into the gap. They lie on
-// the posts' rims.
-TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
+// Two posts 0.2 m apart at 1.2 m in front of a wall at 3 m, before a level camera at the origin.
+Scene PostsBeforeAWall() {
   Scene scene;
   scene.floor = false;
   scene.boxes.push_back({Eigen::Vector3d(3.0, -20, -20), Eigen::Vector3d(4.0, 20, 20)});
   scene.boxes.push_back({Eigen::Vector3d(1.2, -0.4, -20), Eigen::Vector3d(1.3, -0.1, 20)});
   scene.boxes.push_back({Eigen::Vector3d(1.2, 0.1, -20), Eigen::Vector3d(1.3, 0.4, 20)});
+  return scene;
+}
+
+// The posts before a wall: near the posts' sides the matching block covers post and wall, and
+// the nearer post wins: wall pixels beside a post take its disparity (foreground fattening),
+// which would put phantom obstacles into the gap. They lie on the posts' rims.
+TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
+  const Scene scene = PostsBeforeAWall();
   const auto K = SceneIntrinsics(176, 144);
   const Eigen::Isometry3d X_WC = SceneCamera(0, 0, 0, 0);
   Image<float> disparity;
@@ -207,16 +212,12 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   EXPECT_EQ(unmarked, 0);
 }
 
-// The refined left-right check (StereoParams::refine_left_right_tolerance) on the posts in
-// front of the wall above and on a floor seen from a standing robot's eyes: the share of points
-// off by more than 0.3 px (on the posts' sides the matching block covers post and wall; a far
-// floor's texture is finer than the pixels) falls, and the points of the plain surfaces stay.
+// The refined left-right check (StereoParams::refine_left_right_tolerance) on the posts before
+// a wall and on a floor seen from a standing robot's eyes: the share of points off by more than
+// 0.3 px (on the posts' sides the matching block covers post and wall; a far floor's texture is
+// finer than the pixels) falls, and the points of the plain surfaces stay.
 TEST(Stereo, RefinedLeftRightCheckDropsPointsOffBySubPixels) {
-  Scene posts;
-  posts.floor = false;
-  posts.boxes.push_back({Eigen::Vector3d(3.0, -20, -20), Eigen::Vector3d(4.0, 20, 20)});
-  posts.boxes.push_back({Eigen::Vector3d(1.2, -0.4, -20), Eigen::Vector3d(1.3, -0.1, 20)});
-  posts.boxes.push_back({Eigen::Vector3d(1.2, 0.1, -20), Eigen::Vector3d(1.3, 0.4, 20)});
+  const Scene posts = PostsBeforeAWall();
   Scene floor;  // the floor plane only, the eyes 0.5 m above it looking 0.4 rad down
   const auto K = SceneIntrinsics(176, 144);
   struct Counts {
