@@ -65,7 +65,8 @@ TEST(StereoRender, PixelsThatGatherTheirAreaMismatchFewerFarSurfaces) {
 TEST(StereoRender, RefinedLeftRightCheckDropsFarMismatches) {
   const FarMatches unchecked = CountFarMatches(1);
   const FarMatches checked = CountFarMatches(1, 0.3);
-  RecordProperty("unchecked", std::to_string(unchecked.off) + " of " + std::to_string(unchecked.valid));
+  RecordProperty("unchecked",
+                 std::to_string(unchecked.off) + " of " + std::to_string(unchecked.valid));
   RecordProperty("checked", std::to_string(checked.off) + " of " + std::to_string(checked.valid));
   ASSERT_GT(unchecked.valid, 5000);
   ASSERT_GE(unchecked.valid, checked.valid);  // it only drops points
