@@ -25,9 +25,10 @@ FarMatches CountFarMatches(int pixel_samples, double refine_left_right_tolerance
   perception::StereoParams stereo = PerceptionParams{}.stereo;
   stereo.refine_left_right_tolerance = refine_left_right_tolerance;
   FarMatches count;
-  for (const perception::Pose2& pose :
-       {perception::Pose2{0, 0, 0}, perception::Pose2{0, 0.3, -0.2}, perception::Pose2{0, -0.3, 0.2}}) {
-    const StereoView view = RenderStereo(&renderer, world, PlaceRobot(&world, pose), scenario.sensor);
+  for (const perception::Pose2& pose : {perception::Pose2{0, 0, 0}, perception::Pose2{0, 0.3, -0.2},
+                                         perception::Pose2{0, -0.3, 0.2}}) {
+    const StereoView view =
+        RenderStereo(&renderer, world, PlaceRobot(&world, pose), scenario.sensor);
     const perception::PointImage points =
         perception::StereoPointImage(view.left, view.right, view.intrinsics, stereo);
     const double fB = view.intrinsics.fx * view.intrinsics.baseline;
