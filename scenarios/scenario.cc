@@ -22,6 +22,11 @@ constexpr double kMaxMagnitude = 1000.0;
 // cells (30 m: 0.8 GB, 5 s)
 constexpr double kMaxFloorSide = 30.0;
 
+// An image size as messages name it, "176x144".
+std::string Dims(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
 // Typed access to a YAML document that reports every problem as file:line: key: message.
 class Reader {
  public:
@@ -315,9 +320,8 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
     if (sensor["height"]) s.sensor.height_px = r.Integer(sensor["height"], "sensor.height", 16);
     if (s.sensor.width_px > sim::kMaxViewWidth || s.sensor.height_px > sim::kMaxViewHeight) {
       r.Fail(sensor, "sensor",
-             "images up to " + std::to_string(sim::kMaxViewWidth) + "x" +
-                 std::to_string(sim::kMaxViewHeight) + " pixels are supported, got " +
-                 std::to_string(s.sensor.width_px) + "x" + std::to_string(s.sensor.height_px));
+             "images up to " + Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) +
+                 " pixels are supported, got " + Dims(s.sensor.width_px, s.sensor.height_px));
     }
     if (sensor["hfov_deg"]) {
       double hfov_deg = r.Number(sensor["hfov_deg"], "sensor.hfov_deg");
@@ -342,16 +346,15 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
       const int k = s.sensor.pixel_samples;
       if (k > kMaxPixelSamples) {
         r.Fail(samples, "sensor.pixel_samples",
-               "expected 1 to " + std::to_string(kMaxPixelSamples) + " samples per pixel side, got " +
-                   std::to_string(k));
+               "expected 1 to " + std::to_string(kMaxPixelSamples) +
+                   " samples per pixel side, got " + std::to_string(k));
       }
-      if (k * s.sensor.width_px > sim::kMaxViewWidth || k * s.sensor.height_px > sim::kMaxViewHeight) {
+      const int w = s.sensor.width_px, h = s.sensor.height_px;
+      if (k * w > sim::kMaxViewWidth || k * h > sim::kMaxViewHeight) {
         r.Fail(samples, "sensor.pixel_samples",
-               std::to_string(k) + " samples per pixel side of a " + std::to_string(s.sensor.width_px) +
-                   "x" + std::to_string(s.sensor.height_px) + " image render " +
-                   std::to_string(k * s.sensor.width_px) + "x" + std::to_string(k * s.sensor.height_px) +
-                   " pixels; at most " + std::to_string(sim::kMaxViewWidth) + "x" +
-                   std::to_string(sim::kMaxViewHeight) + " are supported");
+               std::to_string(k) + " samples per pixel side of a " + Dims(w, h) + " image render " +
+                   Dims(k * w, k * h) + " pixels; at most " +
+                   Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) + " are supported");
       }
     }
   }
