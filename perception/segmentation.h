@@ -239,13 +239,16 @@ struct ScoreParams {
   double tolerance = 0.8;       // Hoover et al.'s compare tolerance T
 };
 
-// Scores of a segmentation against ground-truth surfaces. accuracy and coverage are 0 when no
-// surface is scored. Hoover counts: a segment enters them if at least half of its pixels lie on
-// scored surfaces; a scored surface without a correct/over/under instance is missed, such a
-// segment without one is noise.
+// Scores of a segmentation against ground-truth surfaces. Accuracy and coverage associate one
+// to one and count only pixels whose true depth is within max_depth_m: each segment belongs to
+// the surface it overlaps most, each scored surface takes the segment of its own that overlaps it
+// most, and a scored surface without one is missed (it lowers coverage, not accuracy). Both are 0
+// when no surface is scored. Hoover counts use all pixels: a segment enters them if at least half
+// of its pixels lie on scored surfaces; a scored surface without a correct/over/under instance is
+// missed, such a segment without one is noise.
 struct SegmentationScore {
-  double accuracy = 0;   // sum |S ∩ G| / sum |S| over scored G and best-overlapping S (Table 2)
-  double coverage = 0;   // sum |S ∩ G| / sum |G|
+  double accuracy = 0;   // sum |S ∩ G| / sum |S| over scored G and their segments (Table 2)
+  double coverage = 0;   // sum |S ∩ G| / sum |G| over scored G
   int correct = 0;       // Hoover: correct detections
   int over = 0;          // over-segmented surfaces
   int under = 0;         // under-segmenting segments

@@ -22,6 +22,7 @@ class IdMap {
     return it->second;
   }
   int size() const { return int(ids_.size()); }
+  int32_t Id(int index) const { return ids_[size_t(index)]; }
 
  private:
   std::unordered_map<int32_t, int> map_;
@@ -41,7 +42,8 @@ SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& 
   const size_t npx = labels.data.size();
   if (truth_surface_ids.data.size() != npx || truth_depth_m.data.size() != npx) return score;
 
-  // compact ids, pixel counts and the overlap table
+  // compact ids, pixel counts and the overlap tables: all pixels (Hoover counts) and those
+  // whose true depth lies within max_depth_m (Table 2 accuracy and coverage)
   IdMap seg_ids, truth_ids;
   std::vector<int> seg_of(npx, -1), truth_of(npx, -1);
   for (size_t i = 0; i < npx; ++i) {
@@ -50,16 +52,27 @@ SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& 
   }
   const int ns = seg_ids.size(), ng = truth_ids.size();
   std::vector<int64_t> seg_px(size_t(ns), 0), truth_px(size_t(ng), 0);
+  std::vector<int64_t> seg_in_range(size_t(ns), 0), truth_in_range(size_t(ng), 0);
   std::vector<int64_t> overlap(size_t(ns) * ng, 0);  // [s * ng + g]
+  std::vector<int64_t> overlap_in_range(size_t(ns) * ng, 0);
   std::vector<std::vector<float>> depths(static_cast<size_t>(ng));
   for (size_t i = 0; i < npx; ++i) {
     const int s = seg_of[i], g = truth_of[i];
-    if (s >= 0) ++seg_px[size_t(s)];
+    const float z = truth_depth_m.data[i];
+    const bool in_range = std::isfinite(z) && z <= p.max_depth_m;
+    if (s >= 0) {
+      ++seg_px[size_t(s)];
+      seg_in_range[size_t(s)] += in_range;
+    }
     if (g >= 0) {
       ++truth_px[size_t(g)];
-      if (std::isfinite(truth_depth_m.data[i])) depths[size_t(g)].push_back(truth_depth_m.data[i]);
+      truth_in_range[size_t(g)] += in_range;
+      if (std::isfinite(z)) depths[size_t(g)].push_back(z);
     }
-    if (s >= 0 && g >= 0) ++overlap[size_t(s) * ng + g];
+    if (s >= 0 && g >= 0) {
+      ++overlap[size_t(s) * ng + g];
+      overlap_in_range[size_t(s) * ng + g] += in_range;
+    }
   }
   score.planes = ns;
 
@@ -74,21 +87,34 @@ SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& 
     ++score.truth_surfaces;
   }
 
-  // Table 2 accuracy and coverage over each scored surface's best-overlapping segment
-  for (int g = 0; g < ng; ++g) {
-    if (!scored[size_t(g)]) continue;
-    int best = -1;
+  // Table 2 accuracy and coverage, one to one: each segment belongs to the surface it overlaps
+  // most (ties: the lower surface id); each scored surface takes the segment of its own that
+  // overlaps it most. A scored surface without a segment of its own is missed: it adds to
+  // sum |G| only.
+  std::vector<int> owner(size_t(ns), -1);
+  for (int s = 0; s < ns; ++s) {
     int64_t best_ov = 0;
-    for (int s = 0; s < ns; ++s) {
-      if (overlap[size_t(s) * ng + g] > best_ov) {
-        best_ov = overlap[size_t(s) * ng + g];
-        best = s;
+    for (int g = 0; g < ng; ++g) {
+      const int64_t o = overlap_in_range[size_t(s) * ng + g];
+      const int b = owner[size_t(s)];
+      if (o > best_ov || (o == best_ov && o > 0 && truth_ids.Id(g) < truth_ids.Id(b))) {
+        best_ov = o;
+        owner[size_t(s)] = g;
       }
     }
-    score.surface_px += truth_px[size_t(g)];
+  }
+  for (int g = 0; g < ng; ++g) {
+    if (!scored[size_t(g)]) continue;
+    score.surface_px += truth_in_range[size_t(g)];
+    int best = -1;
+    for (int s = 0; s < ns; ++s) {
+      if (owner[size_t(s)] != g) continue;
+      if (best < 0 || overlap_in_range[size_t(s) * ng + g] > overlap_in_range[size_t(best) * ng + g])
+        best = s;
+    }
     if (best < 0) continue;
-    score.overlap_px += best_ov;
-    score.segment_px += seg_px[size_t(best)];
+    score.overlap_px += overlap_in_range[size_t(best) * ng + g];
+    score.segment_px += seg_in_range[size_t(best)];
   }
   Ratios(&score);
 

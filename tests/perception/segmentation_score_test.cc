@@ -55,9 +55,10 @@ TEST(ScoreSegmentation, CountsOverAndUnderSegmentation) {
   EXPECT_EQ(s.under, 1);
   EXPECT_EQ(s.missed, 0);
   EXPECT_EQ(s.noise, 0);
-  // accuracy: 7 -> segment 0 (100/100), 3 and 11 -> segment 2 (200/400 each)
-  EXPECT_NEAR(s.accuracy, (100.0 + 200 + 200) / (100 + 400 + 400), 1e-12);
-  EXPECT_NEAR(s.coverage, (100.0 + 200 + 200) / 600, 1e-12);
+  // one to one: 7 -> segment 0 (100/100); segment 2 belongs to 3 (a tie, the lower id), 200/400;
+  // 11 has no segment of its own and counts for coverage only
+  EXPECT_NEAR(s.accuracy, (100.0 + 200) / (100 + 400), 1e-12);
+  EXPECT_NEAR(s.coverage, (100.0 + 200) / 600, 1e-12);
 }
 
 TEST(ScoreSegmentation, CountsMissedSurfacesAndNoiseSegments) {
@@ -73,6 +74,61 @@ TEST(ScoreSegmentation, CountsMissedSurfacesAndNoiseSegments) {
   EXPECT_EQ(s.missed, 2);
   EXPECT_EQ(s.noise, 1);
   EXPECT_NEAR(s.coverage, (200.0 + 50) / 600, 1e-12);
+}
+
+TEST(ScoreSegmentation, SurfaceSeenEdgeOnIsMissedNotCountedTwice) {
+  // a floor with a wall seen edge-on: 6 columns of wall, all inside the floor's segment
+  LabelImage ids(60, 10, 7);
+  const DepthImage depth(60, 10, 1.0f);
+  Fill(&ids, 27, 33, 3);
+  const LabelImage labels(60, 10, 0);
+
+  const SegmentationScore s = ScoreSegmentation(labels, ids, depth);
+
+  // the segment counts once, for the floor; the wall lowers coverage only
+  EXPECT_EQ(s.truth_surfaces, 2);
+  EXPECT_NEAR(s.accuracy, 540.0 / 600, 1e-12);
+  EXPECT_NEAR(s.coverage, 540.0 / 600, 1e-12);
+  EXPECT_EQ(s.segment_px, 600);
+}
+
+TEST(ScoreSegmentation, CoplanarSurfacesApartNeedASegmentEach) {
+  const Truth t;
+  LabelImage merged(60, 10, -1), apart(60, 10, -1);
+  Fill(&merged, 0, 60, 0);  // 7 and 11 (two table tops at one height) in one segment
+  Fill(&merged, 20, 40, 1);
+  Fill(&apart, 0, 20, 0);
+  Fill(&apart, 20, 40, 1);
+  Fill(&apart, 40, 60, 2);
+
+  const SegmentationScore m = ScoreSegmentation(merged, t.ids, t.depth);
+  const SegmentationScore a = ScoreSegmentation(apart, t.ids, t.depth);
+
+  // merged: segment 0 belongs to 7 (the lower id of a tie) and holds 11's pixels too; 11 missed
+  EXPECT_NEAR(m.accuracy, (200.0 + 200) / (400 + 200), 1e-12);
+  EXPECT_NEAR(m.coverage, (200.0 + 200) / 600, 1e-12);
+  EXPECT_DOUBLE_EQ(a.accuracy, 1.0);
+  EXPECT_DOUBLE_EQ(a.coverage, 1.0);
+}
+
+TEST(ScoreSegmentation, CountsOnlyPixelsWithinTheScoredRange) {
+  Truth t;
+  for (int v = 6; v < 10; ++v)
+    for (int u = 0; u < 20; ++u) t.depth.at(u, v) = 4.0f;  // 7's far rows (its median is 1 m)
+  for (int v = 0; v < 10; ++v)
+    for (int u = 20; u < 40; ++u) t.depth.at(u, v) = 3.0f;  // 3 beyond 2.5 m: not scored
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 40, 0);  // 7 and the far surface 3 in one segment
+  Fill(&labels, 40, 60, 1);
+
+  const SegmentationScore s = ScoreSegmentation(labels, t.ids, t.depth);
+
+  // neither the far surface nor 7's far rows count, on either side
+  EXPECT_EQ(s.truth_surfaces, 2);
+  EXPECT_DOUBLE_EQ(s.accuracy, 1.0);
+  EXPECT_DOUBLE_EQ(s.coverage, 1.0);
+  EXPECT_EQ(s.segment_px, 120 + 200);
+  EXPECT_EQ(s.surface_px, 120 + 200);
 }
 
 TEST(ScoreSegmentation, ToleranceDecidesCorrectDetections) {
