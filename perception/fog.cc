@@ -348,38 +348,4 @@ Fog ComputeFog(const MapParams& params, const MapState& state) {
   return fog;
 }
 
-FogScore ScoreFog(const Fog& estimate, const Fog& truth) {
-  FogScore score;
-  std::vector<double> errors;
-  const GridWindow& we = estimate.window;
-  const GridWindow& wt = truth.window;
-  auto is_floor = [](CellType t) { return t == CellType::kFloor || t == CellType::kStairs; };
-  for (int iy = 0; iy < we.size_y; ++iy) {
-    for (int ix = 0; ix < we.size_x; ++ix) {
-      const int tx = we.origin_ix + ix - wt.origin_ix;
-      const int ty = we.origin_iy + iy - wt.origin_iy;
-      if (!wt.Contains(tx, ty)) continue;
-      const CellType e = estimate.TypeAt(ix, iy);
-      const CellType t = truth.TypeAt(tx, ty);
-      ++score.confusion[int(t)][int(e)];
-      if (e == CellType::kUnknown) continue;
-      ++score.observed;
-      if (e == t) ++score.correct;
-      const float he = estimate.HeightAt(ix, iy), ht = truth.HeightAt(tx, ty);
-      if (is_floor(e) && is_floor(t) && std::isfinite(he) && std::isfinite(ht)) {
-        errors.push_back(std::abs(double(he) - double(ht)));
-      }
-    }
-  }
-  score.accuracy = score.observed > 0 ? double(score.correct) / score.observed : 0.0;
-  score.height_cells = int(errors.size());
-  if (!errors.empty()) {
-    score.height_error_max = *std::max_element(errors.begin(), errors.end());
-    auto mid = errors.begin() + errors.size() / 2;
-    std::nth_element(errors.begin(), mid, errors.end());
-    score.height_error_median = *mid;
-  }
-  return score;
-}
-
 }  // namespace fognav::perception

@@ -495,20 +495,53 @@ Fog ComputeFog(const MapParams& params, const MapState& state);
 Fog GroundTruthFog(const std::vector<OrientedBox>& solids_G, const GridWindow& window,
                    const FogParams& params);
 
+// What the planner makes of a cell type: floor and stairs are standable, a tunnel is crawl-only,
+// border and obstacle are blocked.
+enum class Traversability : uint8_t { kUnknown = 0, kStandable, kCrawlOnly, kBlocked };
+Traversability TraversabilityOf(CellType type);
+
+// How a cell of an estimated FOG compares with the ground truth by traversability. The cell is
+// right at a truth cell whose class is its own and, for a standable cell, whose height is within
+// h_floor of its own; a cell right at none of its 8 neighbours nor itself is wrong.
+enum class FogCellComparison : uint8_t {
+  kUnobserved = 0,  // unknown in the estimate or in the truth, or outside the truth's window
+  kRight,           // right at the cell itself
+  kRightNearby,     // right at a neighbour only (a class edge smeared by a cell)
+  kStandableEdge,   // standable, right at a neighbour, but blocked or crawl-only at the cell
+  kWrongHeight,     // standable where the truth nearby is standable, at no height within h_floor
+  kWrongClass,      // not standable, and right nowhere nearby (a floor lost, tunnel for blocked)
+  kUnsafe,          // standable where the truth at the cell and all 8 neighbours is not
+};
+inline constexpr int kNumFogCellComparisons = 7;
+
+// Lower-case name of a comparison ("right", "unsafe", ...).
+const char* FogCellComparisonName(FogCellComparison c);
+
+// Per cell of the estimate's window (window.Index order): its comparison with `truth`.
+std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth, double h_floor);
+
 // Agreement of an estimated FOG with the ground truth, over the cells of the estimate's window
-// that the truth's window also holds.
+// that the truth's window also holds (docs/scores.md).
 struct FogScore {
   int observed = 0;       // cells whose estimated type is not unknown
   int correct = 0;        // observed cells whose type matches the truth
-  double accuracy = 0;    // correct / observed (0 if none observed)
+  double accuracy = 0;    // correct / observed, the six-type match (0 if none observed)
   // confusion[truth][estimate], CellType values as indices, over all common cells.
   std::array<std::array<int, kNumCellTypes>, kNumCellTypes> confusion{};
-  // |estimated - true| floor height over cells that both call floor or stairs, metres.
+  // Cells counted per comparison (CompareFog), FogCellComparison values as indices.
+  std::array<int, kNumFogCellComparisons> comparisons{};
+  int traversability_cells = 0;  // observed cells whose truth is known
+  double traversability = 0;     // share of them right by traversability (0 if none)
+  int unsafe_cells = 0;          // standable where the truth at the cell and around is not
+  int unsafe_cells_strict = 0;   // standable where the truth at the cell is not
+  // |estimated - true| floor height over cells both hold standable, metres.
   int height_cells = 0;
   double height_error_median = 0;
+  double height_error_p95 = 0;
   double height_error_max = 0;
 };
-FogScore ScoreFog(const Fog& estimate, const Fog& truth);
+// h_floor: the height tolerance of a standable cell (FogParams::h_floor).
+FogScore ScoreFog(const Fog& estimate, const Fog& truth, double h_floor);
 
 // ---------------------------------------------------------------------------------------------
 // Pictures and dumps.
@@ -517,6 +550,12 @@ FogScore ScoreFog(const Fog& estimate, const Fog& truth);
 // brown crosses, border solid brown, tunnel "+", obstacle black with a cross, unknown background;
 // +x to the right, +y up; the robot (position and heading) on top.
 RgbImage DrawFog(const Fog& fog, const Pose2& robot_G, int pixels_per_cell = 6);
+// Where the FOG `estimate` differs from `truth` (CompareFog with h_floor): each observed cell
+// coloured by its comparison (right grey, right nearby pale green, standable edge orange, wrong
+// height yellow, wrong class blue, unsafe red with a black cross), a legend with the cell counts
+// on the right, the robot (dark grey) on top.
+RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, double h_floor,
+                       const Pose2& robot_G, int pixels_per_cell = 6);
 // The floor height map in grey with a colour bar; no floor in the background colour.
 RgbImage DrawFloorMap(const MapState& state, int pixels_per_cell = 6);
 // Side views of the 3D grid: occupied layers projected along y (x-z, top) and along x (y-z,
