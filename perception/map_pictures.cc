@@ -1,5 +1,6 @@
 // Pictures of the maps in the paper's scheme (Fig. 9, 12-15) and a machine-readable dump.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -72,6 +73,19 @@ void DrawColourBar(cv::Mat* img, int x0, const HeightScale& s) {
     std::snprintf(label, sizeof(label), "%.1fcm", h * 100.0);
     cv::putText(*img, label, {x0 + 25, v + 4}, cv::FONT_HERSHEY_PLAIN, 0.8, kText);
   }
+}
+
+// The robot's position (a circle) and heading (a line) in a picture of window w.
+void DrawRobot(cv::Mat* img, const GridWindow& w, const Pose2& robot_G, int ppc,
+               const cv::Scalar& colour = kRed) {
+  const double u = (robot_G.x / w.resolution - w.origin_ix) * ppc;
+  const double v = (w.size_y - (robot_G.y / w.resolution - w.origin_iy)) * ppc;
+  const cv::Point c(int(std::lround(u)), int(std::lround(v)));
+  const int r = std::max(4, 2 * ppc);
+  const cv::Point tip(int(std::lround(u + 2.5 * r * std::cos(robot_G.yaw))),
+                      int(std::lround(v - 2.5 * r * std::sin(robot_G.yaw))));
+  cv::circle(*img, c, r, colour, 2, cv::LINE_AA);
+  cv::line(*img, c, tip, colour, 2, cv::LINE_AA);
 }
 
 RgbImage ToRgb(const cv::Mat& bgr) {
@@ -169,16 +183,7 @@ RgbImage DrawFog(const Fog& fog, const Pose2& robot_G, int ppc) {
     }
   }
 
-  // robot position and heading
-  const double u = (robot_G.x / w.resolution - w.origin_ix) * ppc;
-  const double v = (w.size_y - (robot_G.y / w.resolution - w.origin_iy)) * ppc;
-  const cv::Point c(int(std::lround(u)), int(std::lround(v)));
-  const int r = std::max(4, 2 * ppc);
-  const cv::Point tip(int(std::lround(u + 2.5 * r * std::cos(robot_G.yaw))),
-                      int(std::lround(v - 2.5 * r * std::sin(robot_G.yaw))));
-  cv::circle(img, c, r, kRed, 2, cv::LINE_AA);
-  cv::line(img, c, tip, kRed, 2, cv::LINE_AA);
-
+  DrawRobot(&img, w, robot_G, ppc);
   DrawColourBar(&img, w.size_x * ppc, scale);
   return ToRgb(img);
 }
@@ -237,6 +242,55 @@ RgbImage DrawGridSideViews(const MapState& state, double p_occ, int ppc) {
         cv::rectangle(img, p0, p0 + cv::Point(ppc - 1, ppc - 1), colour, cv::FILLED);
       }
     }
+  }
+  return ToRgb(img);
+}
+
+RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, double h_floor,
+                       const Pose2& robot_G, int ppc) {
+  using C = FogCellComparison;
+  // colour per comparison (BGR), in FogCellComparison order
+  const cv::Scalar colours[kNumFogCellComparisons] = {
+      kBackground,              // unobserved
+      {215, 215, 215},          // right: light grey
+      {170, 225, 170},          // right nearby: pale green
+      {0, 140, 255},            // standable edge: orange
+      {0, 215, 235},            // wrong height: yellow
+      {200, 90, 40},            // wrong class: blue
+      {0, 0, 230},              // unsafe: red, with a black cross
+  };
+  const GridWindow& w = estimate.window;
+  ppc = std::max(ppc, 2);
+  constexpr int kLegendWidth = 200;
+  cv::Mat img(std::max(w.size_y * ppc, 200), w.size_x * ppc + kLegendWidth, CV_8UC3, kBackground);
+  const std::vector<C> compared = CompareFog(estimate, truth, h_floor);
+  std::array<int, kNumFogCellComparisons> counts{};
+  for (int iy = 0; iy < w.size_y; ++iy) {
+    for (int ix = 0; ix < w.size_x; ++ix) {
+      const C k = compared[size_t(w.Index(ix, iy))];
+      ++counts[size_t(k)];
+      if (k == C::kUnobserved) continue;
+      const cv::Point p0 = CellCorner(w, ix, iy, ppc);
+      const cv::Point p1 = p0 + cv::Point(ppc - 1, ppc - 1);
+      cv::rectangle(img, p0, p1, colours[int(k)], cv::FILLED);
+      if (k == C::kUnsafe) {
+        cv::line(img, p0, p1, kBlack);
+        cv::line(img, {p0.x, p1.y}, {p1.x, p0.y}, kBlack);
+      }
+    }
+  }
+  DrawRobot(&img, w, robot_G, ppc, kText);  // red is for unsafe cells here
+
+  // legend: a swatch, the comparison's name and its cell count
+  const int x0 = w.size_x * ppc + 10;
+  cv::putText(img, "map vs truth (cells)", {x0, 18}, cv::FONT_HERSHEY_PLAIN, 0.9, kText);
+  for (int k = 1; k < kNumFogCellComparisons; ++k) {
+    const int y = 22 + 20 * k;
+    cv::rectangle(img, {x0, y - 10}, {x0 + 12, y + 2}, colours[k], cv::FILLED);
+    cv::rectangle(img, {x0, y - 10}, {x0 + 12, y + 2}, kText);
+    char label[64];
+    std::snprintf(label, sizeof(label), "%s %d", FogCellComparisonName(C(k)), counts[size_t(k)]);
+    cv::putText(img, label, {x0 + 18, y}, cv::FONT_HERSHEY_PLAIN, 0.9, kText);
   }
   return ToRgb(img);
 }

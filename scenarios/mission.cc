@@ -1315,7 +1315,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       perception::Planar(believed) * perception::Planar(truth_pose).inverse();
   fog = perception::ComputeFog(perception_params.map, maps);
   const perception::Fog truth_fog = TruthFog(scenario, fog.window, perception_params.map.fog, X_GW);
-  const perception::FogScore fog_score = perception::ScoreFog(fog, truth_fog);
+  const perception::FogScore fog_score =
+      perception::ScoreFog(fog, truth_fog, perception_params.map.fog.h_floor);
 
   // the planner's path on the ground-truth FOG of the whole floor, for SPL
   perception::GridWindow whole;
@@ -1353,6 +1354,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
            options.out_dir + "/maps/final_plan.png");
   WritePng(perception::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
+  WritePng(perception::DrawFogErrors(fog, truth_fog, perception_params.map.fog.h_floor, believed),
+           options.out_dir + "/maps/fog_errors.png");
   perception::WriteFogTypes(options.out_dir + "/maps/fog_truth_types.png", truth_fog);
   WritePng(nav::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),
            options.out_dir + "/maps/optimal_plan.png");
@@ -1382,6 +1385,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       {"path_length", path_length},
       {"optimal_path_length", optimal_length},
       {"spl", spl},
+      {"fog", FogScoreJson(fog_score)},
       {"fog_accuracy", fog_score.accuracy},
       {"floor_height_error",
        {{"median", fog_score.height_error_median}, {"max", fog_score.height_error_max}}},

@@ -33,6 +33,13 @@ nlohmann::json ScoreJson(const perception::SegmentationScore& s) {
           {"noise", s.noise},       {"planes", s.planes},     {"truth_surfaces", s.truth_surfaces}};
 }
 
+// Writes text and a newline to path; throws InputError naming it if it cannot.
+void WriteText(const std::string& path, const std::string& text) {
+  std::ofstream file(path);
+  file << text << "\n";
+  if (!file) throw InputError(path + ": could not write");
+}
+
 void MakeDirectory(const std::string& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
@@ -40,6 +47,24 @@ void MakeDirectory(const std::string& dir) {
 }
 
 }  // namespace
+
+nlohmann::json FogScoreJson(const perception::FogScore& s) {
+  nlohmann::json cells = nlohmann::json::object();
+  for (int k = 0; k < perception::kNumFogCellComparisons; ++k) {
+    cells[perception::FogCellComparisonName(perception::FogCellComparison(k))] = s.comparisons[k];
+  }
+  return {{"types", s.accuracy},
+          {"traversability", s.traversability},
+          {"unsafe_cells", s.unsafe_cells},
+          {"unsafe_cells_strict", s.unsafe_cells_strict},
+          {"observed_cells", s.observed},
+          {"height_error",
+           {{"median", s.height_error_median},
+            {"p95", s.height_error_p95},
+            {"max", s.height_error_max},
+            {"cells", s.height_cells}}},
+          {"cells", cells}};
+}
 
 std::vector<sim::HeadAngles> StartSweep() {
   sim::LookAroundParams params;
@@ -214,9 +239,11 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
   perception::Fog fog = perception::ComputeFog(params.map, maps);
   perception::Fog truth = TruthFog(scenario, fog.window, params.map.fog);
-  perception::FogScore fog_score = perception::ScoreFog(fog, truth);
+  const perception::FogScore fog_score = perception::ScoreFog(fog, truth, params.map.fog.h_floor);
   perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
   WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
+  WritePng(perception::DrawFogErrors(fog, truth, params.map.fog.h_floor, robot_G),
+           out_dir + "/maps/fog_errors.png");
   perception::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
   // what the planner makes of the perceived map: the plan a mission would start with
   navigation::PlannerParams planner_params;
@@ -248,6 +275,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
       {"views", views},
       {"segmentation", ScoreJson(overall)},
       {"range", StereoJson(range)},
+      {"fog", FogScoreJson(fog_score)},
       {"fog_accuracy", fog_score.accuracy},
       {"fog_observed_cells", fog_score.observed},
       {"fog_confusion", confusion},
@@ -266,9 +294,22 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
         {"segmentation", perception::Median(segmentation_ms)},
         {"mapping", perception::Median(mapping_ms)}}}};
   std::string text = report.dump(2);
-  std::ofstream file(out_dir + "/perception.json");
-  file << text << "\n";
-  if (!file) throw InputError(out_dir + "/perception.json: could not write");
+  WriteText(out_dir + "/perception.json", text);
+  return text;
+}
+
+std::string RunPerceiveBoth(const Scenario& scenario, const std::string& out_dir, bool quiet,
+                            const PerceptionParams& params) {
+  MakeDirectory(out_dir);
+  nlohmann::json both = {{"scenario", scenario.name}, {"depth", "both"}};
+  for (const DepthMode mode : {DepthMode::kStereo, DepthMode::kIdeal}) {
+    const char* name = mode == DepthMode::kStereo ? "stereo" : "ideal";
+    Scenario s = scenario;
+    s.sensor.depth = mode;
+    both[name] = nlohmann::json::parse(RunPerceive(s, out_dir + "/" + name, quiet, params));
+  }
+  std::string text = both.dump(2);
+  WriteText(out_dir + "/perception.json", text);
   return text;
 }
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "perception/localization.h"
 #include "perception/mapping.h"
 #include "perception/segmentation.h"
@@ -88,6 +90,9 @@ perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow&
 void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
                      const std::string& prefix);
 
+// The FOG scores as report.json and perception.json hold them under "fog" (docs/scores.md).
+nlohmann::json FogScoreJson(const perception::FogScore& s);
+
 // `fognav perceive`: keeps the robot at its start pose, runs the look-around head sweep,
 // perceives every view and writes DIR/perception.json, DIR/frames/ and DIR/maps/.
 // Returns the JSON text it wrote. Throws InputError for an unwritable DIR, SimError if the
@@ -95,6 +100,12 @@ void WriteViewFrames(const StereoView& view, const ViewResult& result, const std
 // paper's comparison).
 std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,
                         const PerceptionParams& params = {});
+
+// `fognav perceive --depth both`: RunPerceive with stereo into DIR/stereo and with the
+// renderer's depth into DIR/ideal, and DIR/perception.json holding both reports under "stereo"
+// and "ideal", so that the sensor's ceiling stands beside what stereo gives. Returns that text.
+std::string RunPerceiveBoth(const Scenario& scenario, const std::string& out_dir, bool quiet,
+                            const PerceptionParams& params = {});
 
 }  // namespace fognav::scenarios
 

@@ -54,6 +54,11 @@ fognav::scenarios::Scenario LoadWithDepth(const std::string& path, const std::st
 
 int Perceive(const std::string& path, const std::string& out, const std::string& depth,
              bool quiet) {
+  if (depth == "both") {
+    fognav::scenarios::RunPerceiveBoth(fognav::scenarios::LoadScenario(path), out, quiet);
+    if (!quiet) std::cout << "wrote perception.json, stereo/ and ideal/ to " << out << "\n";
+    return kExitOk;
+  }
   auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::RunPerceive(scenario, out, quiet);
   if (!quiet) std::cout << "wrote perception.json, frames/ and maps/ to " << out << "\n";
@@ -126,8 +131,9 @@ int main(int argc, char** argv) {
       "perceive", "look around from the start pose, perceive every view, score against truth");
   perceive->add_option("scenario", scenario_path, "scenario YAML file")->required();
   perceive->add_option("--out", out_dir, "output directory")->required();
-  perceive->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
-      ->check(CLI::IsMember({"stereo", "ideal"}));
+  perceive->add_option("--depth", depth,
+                       "range data: stereo, ideal, or both side by side (default: the scenario's)")
+      ->check(CLI::IsMember({"stereo", "ideal", "both"}));
   perceive->add_flag("--quiet", quiet, "print nothing but errors");
 
   std::string motion;

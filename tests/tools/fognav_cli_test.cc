@@ -34,23 +34,38 @@ std::string TempFile(const std::string& name, const std::string& text) {
   return path;
 }
 
-// issue 3's ideal-depth targets on the course's look-around, scored against the renderer's
-// surface ids, and the outputs a reviewer opens
+// The course's look-around with the renderer's depth and with stereo side by side (--depth both),
+// scored against the renderer's surface ids and the world's FOG, and the outputs a reviewer opens
 TEST(FognavCli, PerceiveScoresTheCourseAgainstGroundTruth) {
   const std::string out = (std::filesystem::temp_directory_path() / "fognav_perceive").string();
   std::filesystem::remove_all(out);
   Outcome o = RunFognav("perceive scenarios/stairs_and_table.yaml --out " + out +
-                        " --depth ideal --quiet");
+                        " --depth both --quiet");
   ASSERT_EQ(o.exit_code, 0) << o.output;
-  nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/perception.json"));
-  EXPECT_GE(report["views"].size(), 10u);  // the whole start sweep
-  EXPECT_GE(report["segmentation"]["accuracy"].get<double>(), 0.98);
-  EXPECT_GE(report["segmentation"]["coverage"].get<double>(), 0.95);
-  EXPECT_LT(report["floor_height_error"]["median"].get<double>(), 0.005);
-  EXPECT_EQ(report["plan"]["status"], "ok");
-  for (const char* file : {"frames/view00_left.png", "frames/view00_segments.png", "maps/fog.png",
-                           "maps/fog_truth.png", "maps/plan.png", "maps/fog.yaml"}) {
-    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  nlohmann::json both = nlohmann::json::parse(std::ifstream(out + "/perception.json"));
+  const nlohmann::json& ideal = both["ideal"];
+  const nlohmann::json& stereo = both["stereo"];
+  EXPECT_EQ(ideal["depth"], "ideal");
+  EXPECT_EQ(stereo["depth"], "stereo");
+  EXPECT_GE(ideal["views"].size(), 10u);  // the whole start sweep
+  EXPECT_GE(ideal["segmentation"]["accuracy"].get<double>(), 0.99);
+  EXPECT_GE(ideal["segmentation"]["coverage"].get<double>(), 0.97);
+  EXPECT_GE(ideal["fog"]["traversability"].get<double>(), 0.99);
+  EXPECT_LT(ideal["fog"]["height_error"]["median"].get<double>(), 0.005);
+  EXPECT_EQ(ideal["plan"]["status"], "ok");
+  // stereo: the paper's Table 2 accuracy (0.911) and issue 48's targets at the course's start
+  EXPECT_GE(stereo["segmentation"]["accuracy"].get<double>(), 0.93);
+  EXPECT_GE(stereo["segmentation"]["coverage"].get<double>(), 0.85);
+  EXPECT_GE(stereo["fog"]["traversability"].get<double>(), 0.98);
+  EXPECT_EQ(stereo["fog"]["unsafe_cells"], 0);
+  EXPECT_LE(stereo["fog"]["height_error"]["median"].get<double>(), 0.005);
+  EXPECT_LE(stereo["fog"]["height_error"]["p95"].get<double>(), 0.01);
+  for (const char* depth : {"ideal", "stereo"}) {
+    for (const char* file : {"frames/view00_left.png", "frames/view00_segments.png",
+                             "maps/fog.png", "maps/fog_truth.png", "maps/fog_errors.png",
+                             "maps/plan.png", "maps/fog.yaml"}) {
+      EXPECT_TRUE(std::filesystem::exists(out + "/" + depth + "/" + file)) << depth << "/" << file;
+    }
   }
 }
 
