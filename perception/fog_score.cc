@@ -59,7 +59,8 @@ const char* FogCellComparisonName(FogCellComparison c) {
   return "?";
 }
 
-std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth, double h_floor) {
+std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
+                                          const FogParams& params) {
   using T = Traversability;
   const GridWindow& we = estimate.window;
   const GridWindow& wt = truth.window;
@@ -75,7 +76,12 @@ std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
       // right at truth cell (x, y): the same class, and for standable a height within h_floor
       auto right_at = [&](int x, int y) {
         if (TraversabilityOf(truth.TypeAt(x, y)) != est) return false;
-        return est != T::kStandable || std::abs(double(h) - truth.HeightAt(x, y)) <= h_floor;
+        return est != T::kStandable || std::abs(double(h) - truth.HeightAt(x, y)) <= params.h_floor;
+      };
+      // truth cell (x, y) offers a floor within a step of the map's height
+      auto standable_at = [&](int x, int y) {
+        return TraversabilityOf(truth.TypeAt(x, y)) == T::kStandable &&
+               std::abs(double(h) - truth.HeightAt(x, y)) <= params.h_stairs;
       };
       bool right_near = false, standable_near = false;
       for (int dy = -1; dy <= 1; ++dy) {
@@ -83,10 +89,10 @@ std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
           const int x = c.x + dx, y = c.y + dy;
           if ((dx == 0 && dy == 0) || !wt.Contains(x, y)) continue;
           right_near = right_near || right_at(x, y);
-          standable_near = standable_near || TraversabilityOf(truth.TypeAt(x, y)) == T::kStandable;
+          standable_near = standable_near || standable_at(x, y);
         }
       }
-      const bool standable_over_blocked = est == T::kStandable && at != T::kStandable;
+      const bool standable_over_blocked = est == T::kStandable && !standable_at(c.x, c.y);
       FogCellComparison& r = out[size_t(we.Index(ix, iy))];
       if (right_at(c.x, c.y)) {
         r = FogCellComparison::kRight;
@@ -103,11 +109,11 @@ std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
   return out;
 }
 
-FogScore ScoreFog(const Fog& estimate, const Fog& truth, double h_floor) {
+FogScore ScoreFog(const Fog& estimate, const Fog& truth, const FogParams& params) {
   FogScore score;
   std::vector<double> errors;
   const GridWindow& we = estimate.window;
-  const std::vector<FogCellComparison> compared = CompareFog(estimate, truth, h_floor);
+  const std::vector<FogCellComparison> compared = CompareFog(estimate, truth, params);
   for (int iy = 0; iy < we.size_y; ++iy) {
     for (int ix = 0; ix < we.size_x; ++ix) {
       const TruthCell c = TruthCellOf(we, truth.window, ix, iy);
@@ -121,11 +127,11 @@ FogScore ScoreFog(const Fog& estimate, const Fog& truth, double h_floor) {
       ++score.observed;
       if (e == t) ++score.correct;
       const Traversability te = TraversabilityOf(e), tt = TraversabilityOf(t);
-      if (te == Traversability::kStandable && tt != Traversability::kStandable &&
-          tt != Traversability::kUnknown) {
+      const float he = estimate.HeightAt(ix, iy), ht = truth.HeightAt(c.x, c.y);
+      if (te == Traversability::kStandable && tt != Traversability::kUnknown &&
+          !(tt == Traversability::kStandable && std::abs(double(he) - ht) <= params.h_stairs)) {
         ++score.unsafe_cells_strict;
       }
-      const float he = estimate.HeightAt(ix, iy), ht = truth.HeightAt(c.x, c.y);
       if (te == Traversability::kStandable && tt == Traversability::kStandable &&
           std::isfinite(he) && std::isfinite(ht)) {
         errors.push_back(std::abs(double(he) - double(ht)));

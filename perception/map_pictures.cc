@@ -246,7 +246,7 @@ RgbImage DrawGridSideViews(const MapState& state, double p_occ, int ppc) {
   return ToRgb(img);
 }
 
-RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, double h_floor,
+RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, const FogParams& params,
                        const Pose2& robot_G, int ppc) {
   using C = FogCellComparison;
   // colour per comparison (BGR), in FogCellComparison order
@@ -263,7 +263,7 @@ RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, double h_floor,
   ppc = std::max(ppc, 2);
   constexpr int kLegendWidth = 200;
   cv::Mat img(std::max(w.size_y * ppc, 200), w.size_x * ppc + kLegendWidth, CV_8UC3, kBackground);
-  const std::vector<C> compared = CompareFog(estimate, truth, h_floor);
+  const std::vector<C> compared = CompareFog(estimate, truth, params);
   std::array<int, kNumFogCellComparisons> counts{};
   for (int iy = 0; iy < w.size_y; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {

@@ -1316,7 +1316,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   fog = perception::ComputeFog(perception_params.map, maps);
   const perception::Fog truth_fog = TruthFog(scenario, fog.window, perception_params.map.fog, X_GW);
   const perception::FogScore fog_score =
-      perception::ScoreFog(fog, truth_fog, perception_params.map.fog.h_floor);
+      perception::ScoreFog(fog, truth_fog, perception_params.map.fog);
 
   // the planner's path on the ground-truth FOG of the whole floor, for SPL
   perception::GridWindow whole;
@@ -1354,7 +1354,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
            options.out_dir + "/maps/final_plan.png");
   WritePng(perception::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
-  WritePng(perception::DrawFogErrors(fog, truth_fog, perception_params.map.fog.h_floor, believed),
+  WritePng(perception::DrawFogErrors(fog, truth_fog, perception_params.map.fog, believed),
            options.out_dir + "/maps/fog_errors.png");
   perception::WriteFogTypes(options.out_dir + "/maps/fog_truth_types.png", truth_fog);
   WritePng(nav::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),

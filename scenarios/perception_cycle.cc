@@ -239,10 +239,10 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
   perception::Fog fog = perception::ComputeFog(params.map, maps);
   perception::Fog truth = TruthFog(scenario, fog.window, params.map.fog);
-  const perception::FogScore fog_score = perception::ScoreFog(fog, truth, params.map.fog.h_floor);
+  const perception::FogScore fog_score = perception::ScoreFog(fog, truth, params.map.fog);
   perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
   WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
-  WritePng(perception::DrawFogErrors(fog, truth, params.map.fog.h_floor, robot_G),
+  WritePng(perception::DrawFogErrors(fog, truth, params.map.fog, robot_G),
            out_dir + "/maps/fog_errors.png");
   perception::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
   // what the planner makes of the perceived map: the plan a mission would start with

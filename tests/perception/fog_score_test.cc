@@ -7,7 +7,7 @@
 namespace fognav::perception {
 namespace {
 
-constexpr double kHFloor = 0.015;
+const FogParams kParams;  // h_floor 1.5 cm, h_stairs 5 cm
 
 // A 12 x 12 window of 4 cm cells whose global cells start at (origin, origin).
 GridWindow Window(int origin = 0) {
@@ -52,7 +52,7 @@ TEST(FogScore, TraversabilityClassesFollowThePlanner) {
 TEST(FogScore, TheTruthScoresPerfectly) {
   const Fog truth = Truth();
 
-  const FogScore s = ScoreFog(truth, truth, kHFloor);
+  const FogScore s = ScoreFog(truth, truth, kParams);
 
   EXPECT_EQ(s.observed, 144);
   EXPECT_DOUBLE_EQ(s.accuracy, 1.0);
@@ -72,8 +72,8 @@ TEST(FogScore, AnEdgeSmearedByACellIsRightByTraversabilityOnly) {
   // and the tunnel typed obstacle at the cell nearest the open floor
   Set(&fog, 9, 2, CellType::kObstacle, 0.7f);
 
-  const FogScore s = ScoreFog(fog, truth, kHFloor);
-  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kHFloor);
+  const FogScore s = ScoreFog(fog, truth, kParams);
+  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kParams);
 
   EXPECT_EQ(At(c, fog, 3, 5), FogCellComparison::kRightNearby);
   EXPECT_EQ(At(c, fog, 9, 2), FogCellComparison::kWrongClass);  // no blocked cell near it
@@ -90,8 +90,8 @@ TEST(FogScore, StandableInsideABlockIsUnsafeAndAtItsEdgeOnlyStrictly) {
   Set(&fog, 4, 4, CellType::kFloor, 0.0f);  // the block's corner: floor beside it
   Set(&fog, 10, 1, CellType::kFloor, 0.0f);  // under the table, crawl-only all around
 
-  const FogScore s = ScoreFog(fog, truth, kHFloor);
-  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kHFloor);
+  const FogScore s = ScoreFog(fog, truth, kParams);
+  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kParams);
 
   EXPECT_EQ(At(c, fog, 5, 5), FogCellComparison::kUnsafe);
   EXPECT_EQ(At(c, fog, 4, 4), FogCellComparison::kStandableEdge);
@@ -108,8 +108,8 @@ TEST(FogScore, StandableCellsMustHoldTheirHeightWithinHFloor) {
   Set(&fog, 2, 10, CellType::kFloor, 0.03f);  // 3 cm off, and so is every neighbour
   Set(&fog, 3, 10, CellType::kStairs, -0.02f);
 
-  const FogScore s = ScoreFog(fog, truth, kHFloor);
-  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kHFloor);
+  const FogScore s = ScoreFog(fog, truth, kParams);
+  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kParams);
 
   EXPECT_EQ(At(c, fog, 1, 10), FogCellComparison::kRight);
   EXPECT_EQ(At(c, fog, 2, 10), FogCellComparison::kWrongHeight);
@@ -123,6 +123,26 @@ TEST(FogScore, StandableCellsMustHoldTheirHeightWithinHFloor) {
   EXPECT_DOUBLE_EQ(s.height_error_p95, 0.0);  // 3 of 126 cells lie above the 95th percentile
 }
 
+TEST(FogScore, FloorHeldUnderATopTheTruthStandsOnIsUnsafe) {
+  // a table top 0.49 m high, just below the eyes: the truth holds its 3 x 3 cells as floor up
+  // there (a border around them); the map holds the floor seen under it at 0
+  Fog truth = Truth();
+  for (int iy = 7; iy < 12; ++iy)
+    for (int ix = 0; ix < 5; ++ix) Set(&truth, ix, iy, CellType::kBorder, 0.49f);
+  for (int iy = 8; iy < 11; ++iy)
+    for (int ix = 1; ix < 4; ++ix) Set(&truth, ix, iy, CellType::kFloor, 0.49f);
+  Fog fog = truth;
+  for (int iy = 8; iy < 11; ++iy)
+    for (int ix = 1; ix < 4; ++ix) Set(&fog, ix, iy, CellType::kFloor, 0.0f);
+
+  const FogScore s = ScoreFog(fog, truth, kParams);
+  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kParams);
+
+  EXPECT_EQ(At(c, fog, 2, 9), FogCellComparison::kUnsafe);
+  EXPECT_EQ(s.unsafe_cells, 9);
+  EXPECT_EQ(s.unsafe_cells_strict, 9);
+}
+
 TEST(FogScore, UnknownCellsAreNotScoredAndLostFloorIsWrong) {
   const Fog truth = Truth();
   Fog fog(Window());
@@ -130,7 +150,7 @@ TEST(FogScore, UnknownCellsAreNotScoredAndLostFloorIsWrong) {
   Set(&fog, 1, 11, CellType::kBorder, 0.0f);  // open floor typed border: a floor lost
   Set(&fog, 5, 5, CellType::kTunnel, 0.0f);   // a block typed tunnel
 
-  const FogScore s = ScoreFog(fog, truth, kHFloor);
+  const FogScore s = ScoreFog(fog, truth, kParams);
 
   EXPECT_EQ(s.observed, 3);
   EXPECT_EQ(s.comparisons[int(FogCellComparison::kUnobserved)], 141);
@@ -147,8 +167,8 @@ TEST(FogScore, WindowsAreMatchedByGlobalCells) {
   Set(&fog, 2, 2, CellType::kFloor, 0.0f);  // truth's (5, 5): inside the block
   Set(&fog, 0, 0, CellType::kFloor, 0.0f);  // truth's (3, 3): open floor
 
-  const FogScore s = ScoreFog(fog, truth, kHFloor);
-  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kHFloor);
+  const FogScore s = ScoreFog(fog, truth, kParams);
+  const std::vector<FogCellComparison> c = CompareFog(fog, truth, kParams);
 
   EXPECT_EQ(At(c, fog, 2, 2), FogCellComparison::kUnsafe);
   EXPECT_EQ(At(c, fog, 0, 0), FogCellComparison::kRight);

@@ -87,7 +87,7 @@ std::vector<Eigen::Isometry3d> Around(const Eigen::Vector3d& target, double radi
 void ExpectMatchesTruth(const Fog& fog, const std::vector<OrientedBox>& world,
                         const MapParams& params) {
   const Fog truth = GroundTruthFog(world, fog.window, params.fog);
-  const FogScore s = ScoreFog(fog, truth, params.fog.h_floor);
+  const FogScore s = ScoreFog(fog, truth, params.fog);
   EXPECT_EQ(s.correct, s.observed);
   int shown = 0;
   for (int iy = 0; iy < fog.window.size_y; ++iy) {
@@ -519,7 +519,7 @@ TEST(FogFig9, PerfectSensorMatchesGroundTruth) {
   }
   const Fog fog = ComputeFog(params, state);
   const Fog truth = GroundTruthFog(world, fog.window, params.fog);
-  const FogScore s = ScoreFog(fog, truth, params.fog.h_floor);
+  const FogScore s = ScoreFog(fog, truth, params.fog);
   PrintScore(s);
   for (int iy = 0; iy < fog.window.size_y; ++iy) {
     for (int ix = 0; ix < fog.window.size_x; ++ix) {
