@@ -22,6 +22,7 @@
 #include "scenarios/perception_cycle.h"
 #include "scenarios/video.h"
 #include "sim/controller.h"
+#include "viz/pages.h"
 #include "viz/pictures.h"
 
 namespace fognav::scenarios {
@@ -1398,6 +1399,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::ofstream file(options.out_dir + "/report.json");
   file << outcome.report_json << "\n";
   if (!file) throw InputError(options.out_dir + "/report.json: could not write");
+  // the page reads the files back: they must be complete
+  file.close();
+  trajectory.close();
+  cycles_csv.close();
+  viz::WriteMissionPage(options.out_dir, world_fog, optimal, scenario.start, scenario.goal,
+                        options.video_path);
   return outcome;
 }
 

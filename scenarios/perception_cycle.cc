@@ -10,6 +10,7 @@
 
 #include "navigation/planner.h"
 #include "sim/controller.h"
+#include "viz/pages.h"
 #include "viz/pictures.h"
 
 namespace fognav::scenarios {
@@ -270,6 +271,8 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   std::ofstream file(out_dir + "/perception.json");
   file << text << "\n";
   if (!file) throw InputError(out_dir + "/perception.json: could not write");
+  file.close();
+  viz::WritePerceivePage(out_dir);
   return text;
 }
 
