@@ -54,12 +54,18 @@ void Write(const std::string& path, const cv::Mat& img) {
 
 uint8_t RosValue(CellType t) {
   switch (t) {
-    case CellType::kFloor: return 254;
-    case CellType::kStairs: return 190;
-    case CellType::kTunnel: return 160;
-    case CellType::kUnknown: return 205;
-    case CellType::kBorder: return 40;
-    case CellType::kObstacle: return 0;
+    case CellType::kFloor:
+      return 254;
+    case CellType::kStairs:
+      return 190;
+    case CellType::kTunnel:
+      return 160;
+    case CellType::kUnknown:
+      return 205;
+    case CellType::kBorder:
+      return 40;
+    case CellType::kObstacle:
+      return 0;
   }
   return 205;
 }
@@ -138,8 +144,9 @@ RgbImage DrawGridSideViews(const MapState& state, double p_occ, int ppc) {
     const int n_along = view == 0 ? w.size_y : w.size_x;
     const int origin = view == 0 ? w.origin_ix : w.origin_iy;
     const int y0 = view * (top + view_h + under) + top;
-    Text(&img, view == 0 ? "side view along y (x-z): occupied layers of each column"
-                         : "side view along x (y-z): occupied layers of each row",
+    Text(&img,
+         view == 0 ? "side view along y (x-z): occupied layers of each column"
+                   : "side view along x (y-z): occupied layers of each row",
          {left, y0 - 7});
     cv::rectangle(img, {left, y0}, {left + n_across * ppc - 1, y0 + view_h - 1}, kBackground,
                   cv::FILLED);
@@ -182,8 +189,7 @@ RgbImage DrawGridSideViews(const MapState& state, double p_occ, int ppc) {
       cv::line(img, {u, y0 + view_h}, {u, y0 + view_h + (whole ? 6 : 3)}, kText);
       if (whole) Text(&img, Metres(m), {u - 10, y0 + view_h + 17}, 0.33);
     }
-    Text(&img, view == 0 ? "x [m]" : "y [m]", {left + n_across * ppc - 30, y0 + view_h + 30},
-         0.33);
+    Text(&img, view == 0 ? "x [m]" : "y [m]", {left + n_across * ppc - 30, y0 + view_h + 30}, 0.33);
   }
   // legend
   const int y = height - kRowHeight - 4;

@@ -26,11 +26,20 @@ std::string Escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -216,8 +225,8 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
   const int legend_rows = int(order.size() + 5) / 6 + 1;
   const double height = legend_y + 18 * legend_rows;
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + width + 30
-      << "\" height=\"" << height << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << left + width + 30 << "\" height=\""
+      << height << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
   // axes and grid
   for (double m = 0; m <= top + 1e-9; m += top > 3 ? 1.0 : 0.5) {
     svg << "<line x1=\"" << left << "\" x2=\"" << left + width << "\" y1=\"" << y_of(m)
@@ -225,8 +234,8 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
         << y_of(m) + 4 << "\" text-anchor=\"end\">" << Format("%.1f", m) << "</text>\n";
   }
   svg << "<text x=\"4\" y=\"" << plot_top + 10 << "\">m</text>\n";
-  svg << "<rect x=\"" << left << "\" y=\"" << plot_top << "\" width=\"" << width
-      << "\" height=\"" << plot_h << "\" fill=\"none\" stroke=\"#888\"/>\n";
+  svg << "<rect x=\"" << left << "\" y=\"" << plot_top << "\" width=\"" << width << "\" height=\""
+      << plot_h << "\" fill=\"none\" stroke=\"#888\"/>\n";
   const int tick = std::max(1, int(std::pow(10, std::floor(std::log10(std::max(n, 1) / 2.0)))));
   for (int c = tick; c <= n; c += tick) {
     if (n / tick > 12 && c % (2 * tick) != 0) continue;
@@ -293,8 +302,8 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
 }
 
 std::string LastDecisionsTable(const std::vector<CsvRow>& cycles, size_t count) {
-  const char* columns[] = {"cycle", "step",    "odom_x",   "odom_y",  "odom_yaw",
-                           "posture", "plan", "plan_length", "decision", "target_x",
+  const char* columns[] = {"cycle",    "step",         "odom_x",      "odom_y",   "odom_yaw",
+                           "posture",  "plan",         "plan_length", "decision", "target_x",
                            "target_y", "explorations", "thrashes"};
   std::string html = "<table>\n<tr>";
   for (const char* c : columns) html += std::string("<th>") + c + "</th>";
@@ -331,37 +340,42 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
 
   const std::string scenario = report.value("scenario", "");
   const bool success = report.value("success", false);
-  const std::string failure = report["failure"].is_string() ? report["failure"].get<std::string>() : "";
+  const std::string failure =
+      report["failure"].is_string() ? report["failure"].get<std::string>() : "";
   const std::string detail =
       report["failure_detail"].is_string() ? report["failure_detail"].get<std::string>() : "";
   const int last_cycle = report.value("cycles", 0);
   const std::string outcome = success ? "success" : "failed";
 
   std::string html = PageStart("fognav: " + scenario + " " + outcome);
-  html += "<h1>" + Escape(scenario) + ": <span id=\"outcome\" class=\"" +
-          (success ? "ok" : "bad") + "\">" + outcome + "</span></h1>\n";
-  html += "<p>" + std::string(report.value("reached_goal", false) ? "Goal reached" : "Goal not reached") +
+  html += "<h1>" + Escape(scenario) + ": <span id=\"outcome\" class=\"" + (success ? "ok" : "bad") +
+          "\">" + outcome + "</span></h1>\n";
+  html += "<p>" +
+          std::string(report.value("reached_goal", false) ? "Goal reached" : "Goal not reached") +
           Format(" (%.2f m from it at the end)", report.value("goal_distance", 0.0)) +
           "; failure: <span id=\"failure\">" + Escape(failure.empty() ? "none" : failure) +
-          "</span>" + (detail.empty() ? "" : " (" + Escape(detail) + ")") + Format("; %.0f cycles", last_cycle) +
-          Format(", SPL %.3f.", report.value("spl", 0.0)) + "</p>\n";
-  html += "<p class=\"note\">Files: <a href=\"report.json\">report.json</a>, "
-          "<a href=\"trajectory.csv\">trajectory.csv</a> (a row per step), "
-          "<a href=\"cycles.csv\">cycles.csv</a> (a row per cycle), <a href=\"maps/\">maps/</a>, "
-          "<a href=\"frames/\">frames/</a>.</p>\n";
+          "</span>" + (detail.empty() ? "" : " (" + Escape(detail) + ")") +
+          Format("; %.0f cycles", last_cycle) + Format(", SPL %.3f.", report.value("spl", 0.0)) +
+          "</p>\n";
+  html +=
+      "<p class=\"note\">Files: <a href=\"report.json\">report.json</a>, "
+      "<a href=\"trajectory.csv\">trajectory.csv</a> (a row per step), "
+      "<a href=\"cycles.csv\">cycles.csv</a> (a row per cycle), <a href=\"maps/\">maps/</a>, "
+      "<a href=\"frames/\">frames/</a>.</p>\n";
 
-  html += "<h2>The whole floor</h2>\n<p class=\"note\">The ground-truth FOG of the whole floor "
-          "(world frame, +x right, +y up) with the way the robot took (coloured by move), the "
-          "way it believed it took (odometry, dashed) and the optimal path on the ground "
-          "truth.</p>\n";
+  html +=
+      "<h2>The whole floor</h2>\n<p class=\"note\">The ground-truth FOG of the whole floor "
+      "(world frame, +x right, +y up) with the way the robot took (coloured by move), the "
+      "way it believed it took (odometry, dashed) and the optimal path on the ground "
+      "truth.</p>\n";
   html += Figure(out_dir, "maps/mission.png", "the mission on the whole floor");
 
-  html += "<h2>Timeline</h2>\n" +
-          TimelineSvg(cycles, trajectory, start_W, goal_W, failure, last_cycle);
+  html +=
+      "<h2>Timeline</h2>\n" + TimelineSvg(cycles, trajectory, start_W, goal_W, failure, last_cycle);
 
   if (!failure.empty()) {
-    html += "<h2>The failure: " + Escape(failure) + (detail.empty() ? "" : " (" + Escape(detail) + ")") +
-            "</h2>\n";
+    html += "<h2>The failure: " + Escape(failure) +
+            (detail.empty() ? "" : " (" + Escape(detail) + ")") + "</h2>\n";
     html += Figure(out_dir, "maps/final_plan.png",
                    "the believed FOG and the plan at cycle " + std::to_string(last_cycle) +
                        ", where the mission ended",
@@ -376,8 +390,9 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
   html += Figure(out_dir, "frames/final_disparity.png", "disparity (near red, far blue)", "frame");
   html += Figure(out_dir, "frames/final_segments.png", "plane segments", "frame");
 
-  html += "<h2>The maps at the end</h2>\n<p class=\"note\">The robot's 4 m window in the grid "
-          "(odometry) frame.</p>\n";
+  html +=
+      "<h2>The maps at the end</h2>\n<p class=\"note\">The robot's 4 m window in the grid "
+      "(odometry) frame.</p>\n";
   html += Figure(out_dir, "maps/final_plan.png", "believed FOG with the last plan", "window");
   html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
   html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
@@ -407,11 +422,13 @@ void WritePerceivePage(const std::string& out_dir) {
           Format("; segmentation accuracy %.3f", report["segmentation"].value("accuracy", 0.0)) +
           Format(", coverage %.3f", report["segmentation"].value("coverage", 0.0)) +
           Format("; FOG accuracy %.3f.", report.value("fog_accuracy", 0.0)) + "</p>\n";
-  html += "<p class=\"note\">Files: <a href=\"perception.json\">perception.json</a>, "
-          "<a href=\"maps/\">maps/</a>, <a href=\"frames/\">frames/</a>.</p>\n";
+  html +=
+      "<p class=\"note\">Files: <a href=\"perception.json\">perception.json</a>, "
+      "<a href=\"maps/\">maps/</a>, <a href=\"frames/\">frames/</a>.</p>\n";
 
   html += "<h2>The maps after the look-around</h2>\n";
-  html += Figure(out_dir, "maps/plan.png", "perceived FOG with the plan a mission would start with", "window");
+  html += Figure(out_dir, "maps/plan.png", "perceived FOG with the plan a mission would start with",
+                 "window");
   html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
   html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
   html += Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
@@ -420,9 +437,11 @@ void WritePerceivePage(const std::string& out_dir) {
 
   if (report.contains("fog_confusion") && report["fog_confusion"].is_object()) {
     const json& confusion = report["fog_confusion"];
-    html += "<h2>FOG confusion</h2>\n<p class=\"note\">Rows: the ground truth; columns: the "
-            "estimate; observed cells.</p>\n<table>\n<tr><th></th>";
-    for (auto it = confusion.begin(); it != confusion.end(); ++it) html += "<th>" + Escape(it.key()) + "</th>";
+    html +=
+        "<h2>FOG confusion</h2>\n<p class=\"note\">Rows: the ground truth; columns: the "
+        "estimate; observed cells.</p>\n<table>\n<tr><th></th>";
+    for (auto it = confusion.begin(); it != confusion.end(); ++it)
+      html += "<th>" + Escape(it.key()) + "</th>";
     html += "</tr>\n";
     for (auto row = confusion.begin(); row != confusion.end(); ++row) {
       html += "<tr><th>" + Escape(row.key()) + "</th>";
@@ -434,8 +453,9 @@ void WritePerceivePage(const std::string& out_dir) {
     html += "</table>\n";
   }
 
-  html += "<h2>Views</h2>\n<table>\n<tr><th>view</th><th>pan</th><th>tilt</th><th>accuracy</th>"
-          "<th>coverage</th><th>left</th><th>disparity</th><th>segments</th></tr>\n";
+  html +=
+      "<h2>Views</h2>\n<table>\n<tr><th>view</th><th>pan</th><th>tilt</th><th>accuracy</th>"
+      "<th>coverage</th><th>left</th><th>disparity</th><th>segments</th></tr>\n";
   const json views = report.value("views", json::array());
   for (size_t i = 0; i < views.size(); ++i) {
     char prefix[32];

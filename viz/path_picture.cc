@@ -70,13 +70,19 @@ cv::Mat WithRows(const RgbImage& picture, int rows) {
 
 perception::Rgb MoveColour(Move move) {
   switch (move) {
-    case Move::kWalk: return {40, 90, 230};
-    case Move::kSidestep: return {220, 40, 220};
-    case Move::kTurn: return {0, 200, 220};
+    case Move::kWalk:
+      return {40, 90, 230};
+    case Move::kSidestep:
+      return {220, 40, 220};
+    case Move::kTurn:
+      return {0, 200, 220};
     case Move::kStairsUp:
-    case Move::kStairsDown: return {255, 140, 0};
-    case Move::kCrawl: return {230, 20, 20};
-    case Move::kNone: break;
+    case Move::kStairsDown:
+      return {255, 140, 0};
+    case Move::kCrawl:
+      return {230, 20, 20};
+    case Move::kNone:
+      break;
   }
   return {130, 130, 130};
 }
@@ -110,8 +116,8 @@ void DrawPath(const navigation::PlanResult& plan, const GridWindow& window, int 
              kShift);
   }
   const perception::Pose2& s = plan.path.front().pose_G;
-  DrawStartMark(&image, PointPixel(window, px_per_cell, s.x, s.y), s.yaw,
-                std::max(2, px_per_cell), thickness);
+  DrawStartMark(&image, PointPixel(window, px_per_cell, s.x, s.y), s.yaw, std::max(2, px_per_cell),
+                thickness);
 }
 
 void DrawGoal(const Eigen::Vector2d& goal_G, const GridWindow& window, int px_per_cell,

@@ -64,8 +64,8 @@ perception::Rgb MoveColour(navigation::Move move);
 void DrawPath(const navigation::PlanResult& plan, const perception::GridWindow& window,
               int px_per_cell, perception::RgbImage* picture);
 // Marks the goal on a map picture (a yellow-ringed cross); clipped if it is outside the window.
-void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window,
-              int px_per_cell, perception::RgbImage* picture);
+void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window, int px_per_cell,
+              perception::RgbImage* picture);
 // The map picture of a plan: DrawFog with the path and the goal drawn on top and the moves
 // added to the legend.
 perception::RgbImage DrawPlanPicture(const perception::Fog& fog, const perception::Pose2& robot_G,

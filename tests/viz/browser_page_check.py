@@ -4,12 +4,14 @@
 Usage: browser_page_check.py --fognav BIN --scenario FILE.yaml --out DIR
        browser_page_check.py --out DIR          (a folder a run has written already)
 
-Runs `fognav run FILE.yaml --out DIR --quiet` (when given a scenario), opens DIR/report.html in headless Chromium
-through its DevTools protocol (--remote-debugging-pipe) and fails if the page logs a console
-error or an exception, if an image or video did not load (naturalWidth or videoWidth 0), or if
-the outcome and failure on the page differ from report.json. Saves the whole page as
-DIR/report_screenshot.png (and chromium's own log as DIR/chromium.log). Exits 77 (ctest's SKIP_RETURN_CODE) with the reason when chromium is
-not installed. Only the standard library is used.
+Runs `fognav run FILE.yaml --out DIR --quiet` when given a scenario, opens DIR/report.html in
+headless Chromium through its DevTools protocol (--remote-debugging-pipe) and fails if the page
+logs a console error or an exception, if an image or video did not load (naturalWidth or
+videoWidth 0), or if the outcome and failure on the page differ from report.json (a folder of
+`fognav perceive`, without report.json, is checked for the rest). Saves the whole page as
+DIR/report_screenshot.png and chromium's own log as DIR/chromium.log. Exits 77 (ctest's
+SKIP_RETURN_CODE) with the reason when chromium is not installed. Only the standard library is
+used.
 """
 import argparse
 import base64
@@ -98,7 +100,8 @@ def errors_of(events):
                 "description", details.get("text", "")).splitlines()[0])
         elif method == "Log.entryAdded" and params.get("entry", {}).get("level") == "error":
             entry = params["entry"]
-            errors.append(f"log ({entry.get('source')}): {entry.get('text')} {entry.get('url', '')}")
+            errors.append(f"log ({entry.get('source')}): {entry.get('text')} "
+                          f"{entry.get('url', '')}")
     return errors
 
 
@@ -201,18 +204,22 @@ def main():
             print(f"FAIL: fognav run exited {run.returncode}: {run.stderr.strip()}")
             return 1
     page = os.path.join(args.out, "report.html")
-    with open(os.path.join(args.out, "report.json")) as f:
-        report = json.load(f)
     screenshot = os.path.join(args.out, "report_screenshot.png")
     problems, state = check_page(chromium, page, screenshot)
 
-    expected_outcome = "success" if report["success"] else "failed"
-    if state["outcome"] != expected_outcome:
-        problems.append(f"the page says {state['outcome']!r}, report.json {expected_outcome!r}")
-    expected_failure = report.get("failure") or "none"
-    if state["failure"] != expected_failure:
-        problems.append(f"the page's failure is {state['failure']!r}, report.json's "
-                        f"{expected_failure!r}")
+    # a mission's page names its outcome as report.json does (a perceive page has none)
+    report_path = os.path.join(args.out, "report.json")
+    if os.path.exists(report_path) or args.scenario:
+        with open(report_path) as f:
+            report = json.load(f)
+        expected_outcome = "success" if report["success"] else "failed"
+        if state["outcome"] != expected_outcome:
+            problems.append(f"the page says {state['outcome']!r}, report.json "
+                            f"{expected_outcome!r}")
+        expected_failure = report.get("failure") or "none"
+        if state["failure"] != expected_failure:
+            problems.append(f"the page's failure is {state['failure']!r}, report.json's "
+                            f"{expected_failure!r}")
     if not state["images"]:
         problems.append("the page shows no image")
     for problem in problems:

@@ -31,7 +31,8 @@ Fog CorridorWithTable() {
   FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
   FillBox(&fog, 1.4, 0.6, 2.0, 1.8, CellType::kTunnel, 0.0f);
   for (double x : {1.4, 1.96}) {
-    for (double y : {0.6, 1.76}) FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
+    for (double y : {0.6, 1.76})
+      FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
   }
   return fog;
 }
@@ -146,8 +147,7 @@ TEST(MissionMap, ColoursTheTrueWayByMoveAndDashesTheBelieved) {
     track.push_back({{x, 1.0, 0.0}, {x, 1.0 - 0.4 * i / 30.0, 0.0}, i <= 15 ? "walk" : "crawl"});
   }
   const int px = 6;
-  const RgbImage picture =
-      DrawMissionMap(fog, optimal, {0.5, 1.0, 0.0}, {3.6, 1.0}, track, px);
+  const RgbImage picture = DrawMissionMap(fog, optimal, {0.5, 1.0, 0.0}, {3.6, 1.0}, track, px);
   auto at = [&](double x, double y) -> const Rgb& {  // the pixel of a point
     return picture.at(int(std::lround((x / 0.04 - fog.window.origin_ix) * px)),
                       int(std::lround((50 - (y / 0.04 - fog.window.origin_iy)) * px)));

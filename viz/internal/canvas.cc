@@ -96,13 +96,11 @@ void DrawFogTypesRow(cv::Mat* img, int y) {
     const char* label;
   };
   const float no_height = -std::numeric_limits<float>::infinity();
-  const Item items[] = {{CellType::kFloor, 0.0f, "floor"},
-                        {CellType::kStairs, 0.03f, "stairs"},
-                        {CellType::kBorder, 0.1f, "border"},
-                        {CellType::kBorder, no_height, "no floor"},
-                        {CellType::kTunnel, 0.0f, "tunnel"},
-                        {CellType::kObstacle, 0.3f, "obstacle"},
-                        {CellType::kUnknown, no_height, "unknown"}};
+  const Item items[] = {
+      {CellType::kFloor, 0.0f, "floor"},         {CellType::kStairs, 0.03f, "stairs"},
+      {CellType::kBorder, 0.1f, "border"},       {CellType::kBorder, no_height, "no floor"},
+      {CellType::kTunnel, 0.0f, "tunnel"},       {CellType::kObstacle, 0.3f, "obstacle"},
+      {CellType::kUnknown, no_height, "unknown"}};
   for (const Item& item : items) {
     DrawCell(img, item.type, item.height, {x, y}, kSwatch);
     cv::rectangle(*img, {x, y}, {x + kSwatch - 1, y + kSwatch - 1}, cv::Scalar(150, 150, 150));

@@ -18,7 +18,7 @@ namespace fognav::viz::internal {
 inline const cv::Scalar kBackground(225, 235, 245);  // unknown: pale blue
 inline const cv::Scalar kPaper(255, 255, 255);       // legend panel
 inline const cv::Scalar kBrown(139, 69, 19);
-inline const cv::Scalar kNoFloor(190, 175, 220);     // no floor under the cell: lavender
+inline const cv::Scalar kNoFloor(190, 175, 220);  // no floor under the cell: lavender
 inline const cv::Scalar kNoFloorHatch(105, 75, 150);
 inline const cv::Scalar kBlack(0, 0, 0);
 inline const cv::Scalar kRed(220, 40, 40);
