@@ -355,7 +355,9 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
           Format(" (%.2f m from it at the end)", report.value("goal_distance", 0.0)) +
           "; failure: <span id=\"failure\">" + Escape(failure.empty() ? "none" : failure) +
           "</span>" + (detail.empty() ? "" : " (" + Escape(detail) + ")") +
-          Format("; %.0f cycles", last_cycle) + Format(", SPL %.3f.", report.value("spl", 0.0)) +
+          Format("; %.0f cycles", last_cycle) + Format(", SPL %.3f. ", report.value("spl", 0.0)) +
+          (success ? "Every expectation of the scenario held."
+                   : "An expectation of the scenario failed.") +
           "</p>\n";
   html +=
       "<p class=\"note\">Files: <a href=\"report.json\">report.json</a>, "
