@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
   run->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
       ->check(CLI::IsMember({"stereo", "ideal"}));
   run->add_option("--video", video,
-                  "write the mission as a video, FILE.avi or FILE.mp4 (chase camera, head camera, "
-                  "FOG with the plan; twice real time)");
+                  "write the mission as a video, FILE.avi, FILE.mp4 or FILE.webm (chase camera, "
+                  "head camera, FOG with the plan; twice real time; report.html plays .webm)");
   run->add_flag("--quiet", quiet, "print nothing but errors");
 
   auto* perceive = app.add_subcommand(

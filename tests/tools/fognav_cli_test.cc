@@ -107,7 +107,7 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
   // a video format it cannot write is refused before the mission runs
   Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_video --video /tmp/v.gif");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_NE(o.output.find("/tmp/v.gif: --video: the file must end in .avi or .mp4"),
+  EXPECT_NE(o.output.find("/tmp/v.gif: --video: the file must end in .avi, .mp4 or .webm"),
             std::string::npos) << o.output;
 }
 
