@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -181,7 +182,9 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
   std::map<int, perception::Pose2> true_at_step;
   true_at_step[0] = start_W;
   for (const CsvRow& r : trajectory) {
-    true_at_step[int(Number(r, "step"))] = {Number(r, "true_x"), Number(r, "true_y"), 0.0};
+    const double step = Number(r, "step");
+    if (!(step >= 1)) continue;  // not a row fognav wrote
+    true_at_step[int(step)] = {Number(r, "true_x"), Number(r, "true_y"), 0.0};
   }
   struct Point {
     int cycle;
@@ -191,10 +194,11 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
   std::vector<Point> points;
   double top = 0.5;
   for (const CsvRow& r : cycles) {
+    const double cycle = Number(r, "cycle"), step = Number(r, "step");
+    if (!(cycle >= 1) || !(step >= 0)) continue;  // not a row fognav wrote
     Point p;
-    p.cycle = int(Number(r, "cycle"));
-    const int step = int(Number(r, "step"));
-    auto it = true_at_step.upper_bound(step);
+    p.cycle = int(cycle);
+    auto it = true_at_step.upper_bound(int(step));
     const perception::Pose2 at = std::prev(it)->second;  // the last logged step at or before
     p.distance = std::hypot(at.x - goal_W.x(), at.y - goal_W.y());
     p.plan_length = Number(r, "plan_length");
@@ -203,6 +207,7 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
     top = std::max({top, p.distance, std::isfinite(p.plan_length) ? p.plan_length : 0.0});
     points.push_back(p);
   }
+  if (points.empty()) return "<p class=\"note\">No cycles were logged.</p>\n";
   top = std::ceil(top * 2) / 2;
   const int n = std::max(last_cycle, points.back().cycle);
   const double left = 54, width = 860, plot_h = 170, strip_h = 16;
@@ -330,9 +335,13 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
   // the whole floor with the ways
   std::vector<TrackPoint> track;
   for (const CsvRow& r : trajectory) {
-    track.push_back({{Number(r, "true_x"), Number(r, "true_y"), Number(r, "true_yaw")},
-                     {Number(r, "odom_x"), Number(r, "odom_y"), Number(r, "odom_yaw")},
-                     Field(r, "action")});
+    TrackPoint t{{Number(r, "true_x"), Number(r, "true_y"), Number(r, "true_yaw")},
+                 {Number(r, "odom_x"), Number(r, "odom_y"), Number(r, "odom_yaw")},
+                 Field(r, "action")};
+    auto finite = [](const perception::Pose2& p) {
+      return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.yaw);
+    };
+    if (finite(t.true_W) && finite(t.believed_W)) track.push_back(t);  // else not fognav's row
   }
   fs::create_directories(dir / "maps");
   WritePng(DrawMissionMap(floor_truth, optimal, start_W, goal_W, track),

@@ -94,6 +94,17 @@ TEST(MissionPage, EmbedsTheVideoByARelativePath) {
             std::string::npos);
 }
 
+TEST(MissionPage, SkipsRowsFognavDidNotWrite) {
+  const fs::path dir = FailedMissionFolder();
+  std::ofstream(dir / "cycles.csv", std::ios::app) << "x,-3,oops\n,,\n";
+  std::ofstream(dir / "trajectory.csv", std::ios::app) << "-1,0,1,1,0,1,1,0,walk\n4,40,x\n";
+  WriteMissionPage(dir.string(), navigation::internal::FlatFog(75, 50, 0.04), {}, {0.5, 1.0, 0.0},
+                   {2.6, 1.0}, "");
+  const std::string html = Read(dir / "report.html");
+  EXPECT_NE(html.find("<title>cycle 3: give_up</title>"), std::string::npos);
+  EXPECT_EQ(html.find("<title>cycle 0"), std::string::npos);
+}
+
 TEST(MissionPage, AMissingReportIsAnErrorNamingTheFile) {
   const fs::path dir = fs::path(::testing::TempDir()) / "fognav_pages_empty";
   fs::remove_all(dir);
