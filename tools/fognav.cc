@@ -56,7 +56,9 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
              bool quiet) {
   auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::RunPerceive(scenario, out, quiet);
-  if (!quiet) std::cout << "wrote perception.json, frames/ and maps/ to " << out << "\n";
+  if (!quiet) {
+    std::cout << "wrote report.html, perception.json, frames/ and maps/ to " << out << "\n";
+  }
   return kExitOk;
 }
 
@@ -76,6 +78,7 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
     std::cout << scenario.name << ": " << (outcome.success ? "success" : "FAILED")
               << (outcome.reached_goal ? ", goal reached" : ", goal not reached")
               << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
+              << "page: " << dir << "/report.html\n"
               << "report: " << dir << "/report.json, trajectory: " << dir
               << "/trajectory.csv, decisions: " << dir << "/cycles.csv, frames: " << dir
               << "/frames/, maps: " << dir << "/maps/\n";

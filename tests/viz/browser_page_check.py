@@ -128,11 +128,12 @@ def check_page(chromium, page, screenshot):
         os.dup2(high_in, 3)
         os.dup2(high_out, 4)
 
-    command = [chromium, "--headless=new", "--remote-debugging-pipe", "--disable-gpu",
-               "--no-first-run", "--no-default-browser-check", "--hide-scrollbars",
-               "--mute-audio", f"--user-data-dir={profile}", "about:blank"]
-    if os.geteuid() == 0:
-        command.insert(1, "--no-sandbox")  # chromium's sandbox refuses to run as root
+    # no sandbox: the page is fognav's own file, and root (CI) or a container without user
+    # namespaces keeps chromium's sandbox from starting; /dev/shm is small in containers
+    command = [chromium, "--headless=new", "--remote-debugging-pipe", "--no-sandbox",
+               "--disable-dev-shm-usage", "--disable-gpu", "--no-first-run",
+               "--no-default-browser-check", "--hide-scrollbars", "--mute-audio",
+               f"--user-data-dir={profile}", "about:blank"]
     log = open(os.path.join(os.path.dirname(screenshot), "chromium.log"), "w")
     browser = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=log, stderr=log,
                                preexec_fn=child_fds, close_fds=False)
