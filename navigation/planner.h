@@ -338,29 +338,6 @@ struct PathSegment {
 // The runs of moves of a plan's path, in order; empty without a path.
 std::vector<PathSegment> SegmentPath(const PlanResult& plan);
 
-// Pixel of the centre of FOG cell (ix, iy) in a map picture with `px_per_cell` pixels per cell:
-// x to the right, y up (row 0 holds the cells of largest iy).
-Eigen::Vector2i CellPixel(const perception::GridWindow& window, int px_per_cell, int ix, int iy);
-
-// Draws the path onto a map picture of the window, such as perception::DrawFog's: the map fills
-// the left size_x * px_per_cell columns and all size_y * px_per_cell rows, laid out as in
-// CellPixel (columns further right, e.g. a colour bar, are left alone). The path is a polyline
-// coloured by move (walk blue, sidestep magenta, turn cyan, stairs orange, crawl red) with a
-// heading tick at each pose and the start as a green square; what falls outside the map is
-// clipped. Aborts if the picture is too small or not that high.
-void DrawPath(const PlanResult& plan, const perception::GridWindow& window, int px_per_cell,
-              perception::RgbImage* picture);
-
-// Marks the goal on a map picture (a yellow-ringed cross); clipped if it is outside the window.
-void DrawGoal(const Eigen::Vector2d& goal_G, const perception::GridWindow& window,
-              int px_per_cell, perception::RgbImage* picture);
-
-// The map picture of a plan: perception::DrawFog (the FOG in the paper's scheme, with the robot
-// and the colour bar) with the path and the goal drawn on top.
-perception::RgbImage DrawPlanPicture(const perception::Fog& fog, const perception::Pose2& robot_G,
-                                     const PlanResult& plan, const Eigen::Vector2d& goal_G,
-                                     int px_per_cell = 6);
-
 }  // namespace fognav::navigation
 
 #endif  // FOGNAV_NAVIGATION_PLANNER_H_

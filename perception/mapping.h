@@ -547,38 +547,6 @@ struct FogScore {
 };
 FogScore ScoreFog(const Fog& estimate, const Fog& truth, const FogParams& params);
 
-// ---------------------------------------------------------------------------------------------
-// Pictures and dumps.
-
-// The FOG in the paper's scheme: floor grey by height with a colour bar on the right, stairs
-// brown crosses, border solid brown, tunnel "+", obstacle black with a cross, unknown background;
-// +x to the right, +y up; the robot (position and heading) on top.
-RgbImage DrawFog(const Fog& fog, const Pose2& robot_G, int pixels_per_cell = 6);
-// Where the FOG `estimate` differs from `truth` (CompareFog): each observed cell
-// coloured by its comparison (right grey, right nearby pale green, standable edge orange, wrong
-// height yellow, wrong class blue, unsafe red with a black cross), a legend with the cell counts
-// on the right, the robot (dark grey) on top.
-RgbImage DrawFogErrors(const Fog& estimate, const Fog& truth, const FogParams& params,
-                       const Pose2& robot_G, int pixels_per_cell = 6);
-// The floor height map in grey with a colour bar; no floor in the background colour.
-RgbImage DrawFloorMap(const MapState& state, int pixels_per_cell = 6);
-// Side views of the 3D grid: occupied layers projected along y (x-z, top) and along x (y-z,
-// bottom); darker where more cells of the column are occupied.
-RgbImage DrawGridSideViews(const MapState& state, double p_occ, int pixels_per_cell = 6);
-
-// The types of `fog` as a map_server image (row 0 the highest y; grey values of the legend
-// below). Throws std::runtime_error naming the file if it cannot be written.
-void WriteFogTypes(const std::string& path, const Fog& fog);
-// Writes into `dir` (created if needed): fog.png, floor.png, grid_side.png (pictures above);
-// fog_types.png + fog.yaml (ROS map_server: resolution, origin, trinary mode, and a
-// `fognav_types` legend of the grey value of each type: floor 254, stairs 190, tunnel 160,
-// unknown 205, border 40, obstacle 0 — so map_server reads floor free, border and obstacle
-// occupied, the rest unknown); fog_heights.png (16-bit, value = 1000 + height in millimetres,
-// clamped to [1, 65535], 0 where the height is -infinity). Throws std::runtime_error naming the
-// file if one cannot be written.
-void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& state,
-                      const MapParams& params, const Pose2& robot_G);
-
 }  // namespace fognav::perception
 
 #endif  // FOGNAV_PERCEPTION_MAPPING_H_

@@ -221,15 +221,6 @@ inline SegmentParams RayNoiseParams() {
 // plane merging (paper Section 3). Each point is read only in line extraction and point trading.
 PlaneSet SegmentPlanes(const PointImage& points, const SegmentParams& p = {});
 
-// ---- pictures ----
-
-// The segment picture of the paper's Fig. 4-5: each plane a distinct colour, plane borders
-// black, unsegmented pixels white.
-RgbImage DrawSegments(const PlaneSet& planes);
-// A disparity image in false colour (near = red, far = blue, scaled to its largest value),
-// invalid (NaN) pixels black.
-RgbImage DrawDisparity(const Image<float>& disparity_px);
-
 // ---- scoring against ground truth ----
 
 // Which ground-truth surfaces are scored and how strictly (DESIGN.md "Ground truth").

@@ -264,23 +264,4 @@ CameraIntrinsics Subsample2x(const CameraIntrinsics& K) {
   return out;
 }
 
-RgbImage DrawDisparity(const Image<float>& disparity_px) {
-  RgbImage out(disparity_px.width, disparity_px.height);
-  float max_disp = 0;
-  for (float d : disparity_px.data)
-    if (std::isfinite(d)) max_disp = std::max(max_disp, d);
-  if (max_disp <= 0) return out;
-  // jet colour map over [0, max]: blue (far) -> cyan -> yellow -> red (near)
-  auto channel = [](double x) {
-    return uint8_t(std::lround(255 * std::clamp(1.5 - std::abs(x), 0.0, 1.0)));
-  };
-  for (size_t i = 0; i < out.data.size(); ++i) {
-    const float d = disparity_px.data[i];
-    if (!std::isfinite(d)) continue;
-    const double t = 4.0 * d / max_disp;
-    out.data[i] = Rgb{channel(t - 3), channel(t - 2), channel(t - 1)};
-  }
-  return out;
-}
-
 }  // namespace fognav::perception

@@ -22,6 +22,8 @@
 #include "scenarios/perception_cycle.h"
 #include "scenarios/video.h"
 #include "sim/controller.h"
+#include "viz/pages.h"
+#include "viz/pictures.h"
 
 namespace fognav::scenarios {
 namespace {
@@ -961,7 +963,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
     }
     timing["planning"].push_back(Ms(start));
-    if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
+    if (video) video_plan_picture = viz::DrawPlanPicture(fog, believed, plan, scenario.goal);
     log_row = CycleRow{cycle, controller.steps(), believed, nav::PostureName(posture),
                        moves(plan) ? (plan.reaches_goal ? "goal" : "toward")
                        : plan.status == nav::PlanStatus::kOk ? "here"
@@ -1156,7 +1158,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       }
       decide(why, why_explores ? explore_to : std::nullopt);
       plan = std::move(toward);
-      if (video) video_plan_picture = nav::DrawPlanPicture(fog, believed, plan, scenario.goal);
+      if (video) video_plan_picture = viz::DrawPlanPicture(fog, believed, plan, scenario.goal);
     }
 
     // the first run of moves, cut to about two strides
@@ -1295,7 +1297,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       std::snprintf(name, sizeof(name), "cycle%04d", cycle);
       WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", name);
       std::filesystem::create_directories(options.out_dir + "/maps");
-      WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
+      WritePng(viz::DrawPlanPicture(fog, believed, plan, scenario.goal),
                options.out_dir + "/maps/" + name + "_plan.png");
     }
     if (progress) {
@@ -1350,14 +1352,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   // pictures of the end state
   std::filesystem::create_directories(options.out_dir + "/frames");
   WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", "final");
-  perception::WriteMapPictures(options.out_dir + "/maps", fog, maps, perception_params.map, believed);
-  WritePng(nav::DrawPlanPicture(fog, believed, plan, scenario.goal),
+  viz::WriteMapPictures(options.out_dir + "/maps", fog, maps, perception_params.map, believed);
+  WritePng(viz::DrawPlanPicture(fog, believed, plan, scenario.goal),
            options.out_dir + "/maps/final_plan.png");
-  WritePng(perception::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
-  WritePng(perception::DrawFogErrors(fog, truth_fog, perception_params.map.fog, believed),
+  WritePng(viz::DrawFog(truth_fog, believed), options.out_dir + "/maps/fog_truth.png");
+  WritePng(viz::DrawFogErrors(fog, truth_fog, perception_params.map.fog, believed),
            options.out_dir + "/maps/fog_errors.png");
-  perception::WriteFogTypes(options.out_dir + "/maps/fog_truth_types.png", truth_fog);
-  WritePng(nav::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),
+  viz::WriteFogTypes(options.out_dir + "/maps/fog_truth_types.png", truth_fog);
+  WritePng(viz::DrawPlanPicture(world_fog, scenario.start, optimal, scenario.goal),
            options.out_dir + "/maps/optimal_plan.png");
 
   nlohmann::json collisions = nlohmann::json::array();
@@ -1401,6 +1403,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   std::ofstream file(options.out_dir + "/report.json");
   file << outcome.report_json << "\n";
   if (!file) throw InputError(options.out_dir + "/report.json: could not write");
+  // the page reads the files back: they must be complete
+  file.close();
+  trajectory.close();
+  cycles_csv.close();
+  viz::WriteMissionPage(options.out_dir, world_fog, optimal, scenario.start, scenario.goal,
+                        options.video_path);
   return outcome;
 }
 

@@ -15,8 +15,8 @@ struct MissionOptions {
   std::string out_dir;  // report.json, trajectory.csv, cycles.csv, frames/, maps/
   int dump_every = 0;   // write frames and maps every N cycles (0: only at the end)
   bool quiet = false;   // no progress line and no summary
-  // if set, the mission as a video (.avi or .mp4): chase camera, head camera and FOG with the
-  // plan, a frame every video_period_s of simulated time, played at video_fps
+  // if set, the mission as a video (.avi, .mp4 or .webm): chase camera, head camera and FOG
+  // with the plan, a frame every video_period_s of simulated time, played at video_fps
   std::string video_path;
   double video_period_s = 0.1;
   double video_fps = 20;

@@ -10,6 +10,8 @@
 
 #include "navigation/planner.h"
 #include "sim/controller.h"
+#include "viz/pages.h"
+#include "viz/pictures.h"
 
 namespace fognav::scenarios {
 namespace {
@@ -176,9 +178,9 @@ void WriteViewFrames(const StereoView& view, const ViewResult& result, const std
   MakeDirectory(dir);
   WritePng(view.left, dir + "/" + prefix + "_left.png");
   if (!result.disparity.empty()) {
-    WritePng(perception::DrawDisparity(result.disparity), dir + "/" + prefix + "_disparity.png");
+    WritePng(viz::DrawDisparity(result.disparity), dir + "/" + prefix + "_disparity.png");
   }
-  WritePng(perception::DrawSegments(result.planes), dir + "/" + prefix + "_segments.png");
+  WritePng(viz::DrawSegments(result.planes), dir + "/" + prefix + "_segments.png");
 }
 
 std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,
@@ -240,18 +242,17 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   perception::Fog fog = perception::ComputeFog(params.map, maps);
   perception::Fog truth = TruthFog(scenario, fog.window, params.map.fog);
   const perception::FogScore fog_score = perception::ScoreFog(fog, truth, params.map.fog);
-  perception::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
-  WritePng(perception::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
-  WritePng(perception::DrawFogErrors(fog, truth, params.map.fog, robot_G),
-           out_dir + "/maps/fog_errors.png");
-  perception::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
+  viz::WriteMapPictures(out_dir + "/maps", fog, maps, params.map, robot_G);
+  WritePng(viz::DrawFog(truth, robot_G), out_dir + "/maps/fog_truth.png");
+  WritePng(viz::DrawFogErrors(fog, truth, params.map.fog, robot_G), out_dir + "/maps/fog_errors.png");
+  viz::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
   // what the planner makes of the perceived map: the plan a mission would start with
   navigation::PlannerParams planner_params;
   planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
   planner_params.kneel_offset = controller.KneelOffset();
   const navigation::PlanResult plan =
       navigation::Plan(fog, robot_G, scenario.goal, planner_params);
-  WritePng(navigation::DrawPlanPicture(fog, robot_G, plan, scenario.goal),
+  WritePng(viz::DrawPlanPicture(fog, robot_G, plan, scenario.goal),
            out_dir + "/maps/plan.png");
   nlohmann::json plan_moves = nlohmann::json::object();
   for (const navigation::PathSegment& run : navigation::SegmentPath(plan)) {
@@ -295,6 +296,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
         {"mapping", perception::Median(mapping_ms)}}}};
   std::string text = report.dump(2);
   WriteText(out_dir + "/perception.json", text);
+  viz::WritePerceivePage(out_dir);
   return text;
 }
 

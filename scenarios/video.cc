@@ -57,8 +57,10 @@ MissionVideo::MissionVideo(const std::string& path, double fps)
     fourcc = cv::VideoWriter::fourcc('M', 'J', 'P', 'G');
   } else if (ext == ".mp4") {
     fourcc = cv::VideoWriter::fourcc('m', 'p', '4', 'v');
+  } else if (ext == ".webm") {
+    fourcc = cv::VideoWriter::fourcc('V', 'P', '8', '0');  // the one a browser plays in the page
   } else {
-    throw InputError(path + ": --video: the file must end in .avi or .mp4");
+    throw InputError(path + ": --video: the file must end in .avi, .mp4 or .webm");
   }
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;

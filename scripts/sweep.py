@@ -12,10 +12,13 @@ on the ground-truth map (optimal path length 0) are counted apart.
 truth); the rows hold segmentation accuracy, coverage and correct detections and the FOG
 accuracy, and the summary their means.
 --compare lists the scenarios whose outcome differs from an earlier sweep's results.tsv.
+OUT_DIR/index.html shows the summary and a table of the worlds (sorted by a click on a column's
+head), each with a thumbnail of its map that links to its report.html.
 Only the standard library is used.
 """
 import argparse
 import concurrent.futures
+import html
 import json
 import os
 import subprocess
@@ -30,7 +33,7 @@ def run_one(fognav, scenario, out_root, perceive):
     name = os.path.splitext(os.path.basename(scenario))[0]
     out = os.path.join(out_root, name)
     row = {c: "" for c in MISSION_COLUMNS + PERCEIVE_COLUMNS}
-    row.update(name=name, optimal="")
+    row.update(name=name, optimal="", wall_time="")
     command = [fognav, "perceive", scenario, "--out", out] if perceive else \
         [fognav, "run", scenario, "--out", out, "--quiet"]
     report_path = os.path.join(out, "perception.json" if perceive else "report.json")
@@ -59,7 +62,8 @@ def run_one(fognav, scenario, out_root, perceive):
         row.update(success=report.get("success"), failure=report.get("failure") or "",
                    detail=report.get("failure_detail") or "", spl=f"{report.get('spl', 0):.3f}",
                    cycles=report.get("cycles"), collisions=report.get("collisions"),
-                   optimal=report.get("optimal_path_length", 0))
+                   optimal=report.get("optimal_path_length", 0),
+                   wall_time=f"{report.get('wall_time_s', 0):.1f}")
     return row
 
 
@@ -73,6 +77,69 @@ def read_results(path):
 def mean(rows, key):
     values = [float(r[key]) for r in rows if r[key] != ""]
     return sum(values) / max(1, len(values))
+
+
+# sorts the table by the clicked column, numbers as numbers; a second click reverses
+SORT_SCRIPT = """
+document.querySelectorAll('th').forEach((th, column) => th.addEventListener('click', () => {
+  const body = th.closest('table').tBodies[0];
+  const up = th.dataset.order !== 'up';
+  th.dataset.order = up ? 'up' : 'down';
+  const key = row => row.cells[column].dataset.sort ?? row.cells[column].textContent;
+  const rows = Array.from(body.rows).sort((a, b) => {
+    const x = key(a), y = key(b), nx = parseFloat(x), ny = parseFloat(y);
+    const order = !isNaN(nx) && !isNaN(ny) ? nx - ny : x.localeCompare(y);
+    return up ? order : -order;
+  });
+  rows.forEach(row => body.appendChild(row));
+}));
+"""
+
+
+def write_index(out_dir, rows, summary, perceive):
+    """OUT_DIR/index.html: the summary, then a sortable table of the worlds with thumbnails."""
+    if perceive:
+        columns = [("world", "name"), ("exit", "exit"), ("segmentation accuracy", "accuracy"),
+                   ("coverage", "coverage"), ("FOG accuracy", "fog_accuracy")]
+        thumbnail = "maps/plan.png"
+    else:
+        columns = [("world", "name"), ("outcome", "outcome"), ("failure", "failure"),
+                   ("detail", "detail"), ("SPL", "spl"), ("cycles", "cycles"),
+                   ("wall time [s]", "wall_time")]
+        thumbnail = "maps/mission.png"
+    e = html.escape
+    lines = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
+             f"<title>fognav {e(summary)}</title>",
+             "<style>body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}"
+             "td,th{border:1px solid #ddd;padding:2px 8px;text-align:left}"
+             "th{background:#f4f4f4;cursor:pointer}.bad{color:#c62828}.ok{color:#1a7f37}"
+             "img{max-width:240px;max-height:120px}</style></head><body>",
+             f"<h1>fognav sweep</h1><p id=\"summary\">{e(summary)}</p>",
+             "<p>Click a column's head to sort by it.</p>",
+             "<table><thead><tr>" + "".join(f"<th>{e(c)}</th>" for c, _ in columns) +
+             "<th>map</th></tr></thead><tbody>"]
+    for r in rows:
+        page = f"{r['name']}/report.html"
+        cells = []
+        for _, key in columns:
+            value = r.get(key, "")
+            if key == "name":
+                cells.append(f'<td><a href="{e(page)}">{e(str(value))}</a></td>')
+            elif key == "outcome":
+                cls = "ok" if value == "success" else "bad"
+                cells.append(f'<td class="{cls}">{e(str(value))}</td>')
+            else:
+                cells.append(f"<td>{e(str(value))}</td>")
+        image = os.path.join(r["name"], thumbnail)
+        if os.path.exists(os.path.join(out_dir, image)):
+            cells.append(f'<td><a href="{e(page)}"><img src="{e(image)}" alt="map of '
+                         f'{e(r["name"])}"></a></td>')
+        else:
+            cells.append("<td></td>")
+        lines.append("<tr>" + "".join(cells) + "</tr>")
+    lines += ["</tbody></table>", f"<script>{SORT_SCRIPT}</script>", "</body></html>"]
+    with open(os.path.join(out_dir, "index.html"), "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 def main():
@@ -114,17 +181,22 @@ def main():
         for r in rows:
             if r["exit"] != 0:
                 print(f"FAIL {r['name']}: exit {r['exit']} {r['detail']}")
-        print(f"sweep: {len(done)}/{len(rows)} perceived; mean segmentation accuracy "
-              f"{mean(done, 'accuracy'):.4f}, coverage {mean(done, 'coverage'):.4f}, "
-              f"FOG accuracy {mean(done, 'fog_accuracy'):.4f}")
+        summary = (f"sweep: {len(done)}/{len(rows)} perceived; mean segmentation accuracy "
+                   f"{mean(done, 'accuracy'):.4f}, coverage {mean(done, 'coverage'):.4f}, "
+                   f"FOG accuracy {mean(done, 'fog_accuracy'):.4f}")
     else:
         valid = [r for r in rows if r["optimal"] != 0]
         passed = [r for r in valid if r["exit"] == 0]
         for r in valid:
             if r["exit"] != 0:
                 print(f"FAIL {r['name']}: exit {r['exit']} {r['failure']} {r['detail']}")
-        print(f"sweep: {len(passed)}/{len(valid)} passed, mean SPL {mean(valid, 'spl'):.3f}; "
-              f"{len(rows) - len(valid)} without a way on the ground truth")
+        summary = (f"sweep: {len(passed)}/{len(valid)} passed, mean SPL "
+                   f"{mean(valid, 'spl'):.3f}; {len(rows) - len(valid)} without a way on the "
+                   f"ground truth")
+        for r in rows:
+            r["outcome"] = {0: "success", 1: "failed"}.get(r["exit"], f"error (exit {r['exit']})")
+    print(summary)
+    write_index(args.out_dir, rows, summary, args.perceive)
     if args.compare:
         old = read_results(os.path.join(args.compare, "results.tsv"))
         key = "fog_accuracy" if args.perceive else "failure"

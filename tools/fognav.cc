@@ -61,7 +61,9 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
   }
   auto scenario = LoadWithDepth(path, depth);
   fognav::scenarios::RunPerceive(scenario, out, quiet);
-  if (!quiet) std::cout << "wrote perception.json, frames/ and maps/ to " << out << "\n";
+  if (!quiet) {
+    std::cout << "wrote report.html, perception.json, frames/ and maps/ to " << out << "\n";
+  }
   return kExitOk;
 }
 
@@ -81,6 +83,7 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
     std::cout << scenario.name << ": " << (outcome.success ? "success" : "FAILED")
               << (outcome.reached_goal ? ", goal reached" : ", goal not reached")
               << (outcome.failure.empty() ? "" : ", failure " + outcome.failure) << "\n"
+              << "page: " << dir << "/report.html\n"
               << "report: " << dir << "/report.json, trajectory: " << dir
               << "/trajectory.csv, decisions: " << dir << "/cycles.csv, frames: " << dir
               << "/frames/, maps: " << dir << "/maps/\n";
@@ -123,8 +126,8 @@ int main(int argc, char** argv) {
   run->add_option("--depth", depth, "range data: stereo or ideal (default: the scenario's)")
       ->check(CLI::IsMember({"stereo", "ideal"}));
   run->add_option("--video", video,
-                  "write the mission as a video, FILE.avi or FILE.mp4 (chase camera, head camera, "
-                  "FOG with the plan; twice real time)");
+                  "write the mission as a video, FILE.avi, FILE.mp4 or FILE.webm (chase camera, "
+                  "head camera, FOG with the plan; twice real time; report.html plays .webm)");
   run->add_flag("--quiet", quiet, "print nothing but errors");
 
   auto* perceive = app.add_subcommand(

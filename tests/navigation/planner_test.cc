@@ -1169,51 +1169,6 @@ TEST(Planner, NamesMovesAndStates) {
   EXPECT_STREQ(NoPathReasonName(NoPathReason::kStartBlocked), "start_blocked");
 }
 
-TEST(PathPicture, DrawsThePathOverTheMap) {
-  const Fog fog = CorridorWithTable();
-  const Eigen::Vector2d goal(2.70, 1.22);
-  const Pose2 start{0.50, 1.22, 0.0};
-  const PlanResult r = Plan(fog, start, goal, PlannerParams());
-  ASSERT_EQ(r.status, PlanStatus::kOk);
-  const int px = 4;
-  const perception::RgbImage map = perception::DrawFog(fog, start, px);
-  const perception::RgbImage picture = DrawPlanPicture(fog, start, r, goal, px);
-  ASSERT_EQ(picture.width, map.width);  // the map and its colour bar
-  ASSERT_EQ(picture.height, 60 * px);
-  // a walked cell of the path turns blue, a crawled one red
-  const Eigen::Vector2i walk_px = CellPixel(fog.window, px, 16, 30);  // 0.66 m, the table at 1.4
-  EXPECT_GT(picture.at(walk_px.x(), walk_px.y()).b, 150);
-  EXPECT_LT(picture.at(walk_px.x(), walk_px.y()).r, 120);
-  const Eigen::Vector2i crawl_px = CellPixel(fog.window, px, 42, 30);
-  EXPECT_GT(picture.at(crawl_px.x(), crawl_px.y()).r, 180);
-  EXPECT_LT(picture.at(crawl_px.x(), crawl_px.y()).g, 100);
-  // far from the path, and in the colour bar, nothing changed
-  const Eigen::Vector2i far_px = CellPixel(fog.window, px, 10, 20);
-  EXPECT_EQ(picture.at(far_px.x(), far_px.y()).g, map.at(far_px.x(), far_px.y()).g);
-  for (int v = 0; v < picture.height; ++v) {
-    for (int u = 80 * px; u < picture.width; ++u) {
-      ASSERT_EQ(picture.at(u, v).r, map.at(u, v).r);
-      ASSERT_EQ(picture.at(u, v).g, map.at(u, v).g);
-    }
-  }
-}
-
-TEST(PathPicture, DrawsTheGoalAndClipsPosesOutsideTheMap) {
-  const Fog fog = FlatFog(50, 50, 0.04);
-  PlanResult r;
-  r.status = PlanStatus::kOk;
-  r.path = {{{0.5, 1.02, 0.0}, Move::kNone, Posture::kUpright},
-            {{5.0, 1.02, 0.0}, Move::kWalk, Posture::kUpright}};
-  perception::RgbImage picture(50 * 3 + 7, 50 * 3);  // a 7 px bar on the right
-  DrawPath(r, fog.window, 3, &picture);
-  DrawGoal({5.0, 1.0}, fog.window, 3, &picture);
-  for (int v = 0; v < picture.height; ++v) {
-    for (int u = 150; u < picture.width; ++u) ASSERT_EQ(picture.at(u, v).b, 0);
-  }
-  const Eigen::Vector2i on_line = CellPixel(fog.window, 3, 40, 25);
-  EXPECT_GT(picture.at(on_line.x(), on_line.y()).b, 100);
-}
-
 // `fog` with a 0.1 m square obstacle, 0.2 m high, centred on q
 Fog WithBlockAt(const Fog& fog, const Pose2& q) {
   Fog blocked = fog;

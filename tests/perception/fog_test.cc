@@ -530,8 +530,6 @@ TEST(FogFig9, PerfectSensorMatchesGroundTruth) {
                   CellTypeName(t), truth.HeightAt(ix, iy), CellTypeName(e), fog.HeightAt(ix, iy));
     }
   }
-  WriteMapPictures(::testing::TempDir() + "fig9_est", fog, state, params, robot);
-  WriteMapPictures(::testing::TempDir() + "fig9_truth", truth, state, params, robot);
   EXPECT_GE(s.accuracy, 0.99);
   EXPECT_LE(s.height_error_max, 0.005);
 }

@@ -66,7 +66,7 @@ TEST_P(MissionVideoTest, WritesFramesOfThreePanels) {
   std::filesystem::remove(path);
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, MissionVideoTest, ::testing::Values(".avi", ".mp4"));
+INSTANTIATE_TEST_SUITE_P(Formats, MissionVideoTest, ::testing::Values(".avi", ".mp4", ".webm"));
 
 TEST(MissionVideo, RefusesOtherFormatsNamingThePath) {
   try {

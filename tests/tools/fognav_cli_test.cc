@@ -122,7 +122,7 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
   // a video format it cannot write is refused before the mission runs
   Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_video --video /tmp/v.gif");
   EXPECT_EQ(o.exit_code, 2);
-  EXPECT_NE(o.output.find("/tmp/v.gif: --video: the file must end in .avi or .mp4"),
+  EXPECT_NE(o.output.find("/tmp/v.gif: --video: the file must end in .avi, .mp4 or .webm"),
             std::string::npos) << o.output;
 }
 
@@ -151,6 +151,47 @@ TEST(FognavCli, RenderWritesTheViews) {
                            "intrinsics.json", "overview.png"}) {
     EXPECT_TRUE(std::filesystem::exists(dir + "/" + file)) << file;
   }
+}
+
+// scripts/sweep.py writes OUT/index.html: the summary, then a row per world in name order
+// linking its report.html, with its map as a thumbnail where there is one. A stand-in for
+// fognav writes the reports, so the sweep takes no time.
+TEST(FognavCli, SweepWritesAnIndexOfTheWorlds) {
+  if (std::system("python3 --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
+  const auto tmp = std::filesystem::temp_directory_path() / "fognav_sweep_index";
+  std::filesystem::remove_all(tmp);
+  std::filesystem::create_directories(tmp);
+  const std::string fake = (tmp / "fake_fognav").string();
+  // run SCENARIO --out DIR --quiet: b_world fails with no_path and draws no map
+  std::ofstream(fake) << "#!/bin/sh\nmkdir -p \"$4/maps\"\ncase \"$2\" in\n"
+                         "*b_world*) echo '{\"success\": false, \"failure\": \"no_path\", "
+                         "\"spl\": 0, \"cycles\": 9, \"optimal_path_length\": 2, "
+                         "\"wall_time_s\": 1.5}' > \"$4/report.json\"; exit 1;;\n"
+                         "*) echo '{\"success\": true, \"failure\": null, \"spl\": 0.9, "
+                         "\"cycles\": 4, \"optimal_path_length\": 2, \"wall_time_s\": 2.25}' > "
+                         "\"$4/report.json\"; echo png > \"$4/maps/mission.png\";;\nesac\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const std::string command = "python3 scripts/sweep.py " + (tmp / "out").string() + " " +
+                              TempFile("b_world.yaml", "") + " " + TempFile("a_world.yaml", "") +
+                              " --fognav " + fake + " > /dev/null 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(tmp / "out" / "index.html");
+  const std::string html(std::istreambuf_iterator<char>(in), {});
+  EXPECT_NE(html.find("<p id=\"summary\">sweep: 1/2 passed, mean SPL 0.450"), std::string::npos)
+      << html;
+  const size_t a = html.find("<td><a href=\"a_world/report.html\">a_world</a></td>"
+                             "<td class=\"ok\">success</td>");
+  const size_t b = html.find("<td><a href=\"b_world/report.html\">b_world</a></td>"
+                             "<td class=\"bad\">failed</td><td>no_path</td>");
+  ASSERT_NE(a, std::string::npos) << html;
+  ASSERT_NE(b, std::string::npos) << html;
+  EXPECT_LT(a, b);
+  EXPECT_NE(html.find("<td>0.900</td><td>4</td><td>2.2</td><td><a href=\"a_world/report.html\">"
+                      "<img src=\"a_world/maps/mission.png\""),
+            std::string::npos);
+  EXPECT_NE(html.find("<td>1.5</td><td></td></tr>"), std::string::npos);  // no map, no image
+  EXPECT_NE(html.find("<script>"), std::string::npos);
+  EXPECT_EQ(html.find("<script src"), std::string::npos);
 }
 
 // scripts/random_worlds.py (the rooms of robustness sweeps) writes files that `fognav validate`

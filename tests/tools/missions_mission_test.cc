@@ -113,6 +113,8 @@ TEST_P(Suite, MeetsItsExpectations) {
   EXPECT_TRUE(std::filesystem::exists(out + "/trajectory.csv"));
   EXPECT_TRUE(std::filesystem::exists(out + "/maps/final_plan.png"));
   EXPECT_TRUE(std::filesystem::exists(out + "/frames/final_left.png"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/maps/mission.png"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/report.html"));
   ExpectCyclesMatchReport(out, report);
   if (name == "stairs_and_table") {
     // issue 7's target: at most 1.3 times the planner's path on the ground-truth FOG
