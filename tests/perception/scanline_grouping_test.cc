@@ -258,9 +258,12 @@ TEST(ScanlineGrouping, RayNoiseKeepsCentimetreTreadsOffTheFloorUnderStereoNoise)
         ScoreSegmentation(paper.labels, stairs.view.surface, stairs.view.depth);
     const SegmentationScore s_ray =
         ScoreSegmentation(ray.labels, stairs.view.surface, stairs.view.depth);
-    EXPECT_LT(s_paper.accuracy, 0.35);
-    EXPECT_GT(s_ray.accuracy, 0.6);
-    EXPECT_GT(s_ray.coverage, 0.65);
+    // a tread swallowed by the floor's plane has no segment of its own: the floor's segment
+    // counts once, against its tread pixels, and the tread is missed
+    EXPECT_LT(s_paper.accuracy, 0.75);
+    EXPECT_LT(s_paper.coverage, s_ray.coverage - 0.1);
+    EXPECT_GT(s_ray.accuracy, 0.9);
+    EXPECT_GT(s_ray.coverage, 0.8);
   }
 }
 
