@@ -406,6 +406,9 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
       "(odometry) frame.</p>\n";
   html += Figure(out_dir, "maps/final_plan.png", "believed FOG with the last plan", "window");
   html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
+  html += Figure(out_dir, "maps/fog_errors.png",
+                 "the FOG against the truth (docs/scores.md); red: standable where it is not",
+                 "window");
   html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
   html += Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
   html += Figure(out_dir, "maps/optimal_plan.png", "optimal plan on the ground truth", "window");
@@ -432,7 +435,10 @@ void WritePerceivePage(const std::string& out_dir) {
   html += "<p>Depth: " + Escape(report.value("depth", "")) +
           Format("; segmentation accuracy %.3f", report["segmentation"].value("accuracy", 0.0)) +
           Format(", coverage %.3f", report["segmentation"].value("coverage", 0.0)) +
-          Format("; FOG accuracy %.3f.", report.value("fog_accuracy", 0.0)) + "</p>\n";
+          Format("; FOG traversability %.3f",
+                 report.value("fog", json::object()).value("traversability", 0.0)) +
+          Format(", unsafe cells %.0f", report.value("fog", json::object()).value("unsafe_cells", 0.0)) +
+          Format(", six-type accuracy %.3f.", report.value("fog_accuracy", 0.0)) + "</p>\n";
   html +=
       "<p class=\"note\">Files: <a href=\"perception.json\">perception.json</a>, "
       "<a href=\"maps/\">maps/</a>, <a href=\"frames/\">frames/</a>.</p>\n";
@@ -441,6 +447,9 @@ void WritePerceivePage(const std::string& out_dir) {
   html += Figure(out_dir, "maps/plan.png", "perceived FOG with the plan a mission would start with",
                  "window");
   html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
+  html += Figure(out_dir, "maps/fog_errors.png",
+                 "the FOG against the truth (docs/scores.md); red: standable where it is not",
+                 "window");
   html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
   html += Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
 
