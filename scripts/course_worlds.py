@@ -4,9 +4,10 @@
 Usage: scripts/course_worlds.py OUT_DIR [--count N] [--seed S] [--prefix NAME]
 
 Each world is a walled corridor (scenarios/stairs_and_table.yaml) holding the course's four
-sections in a random order, each with random sizes within the paper's limits:
+sections in a random order, 0.35-0.5 m apart (0.6-0.7 m after the table, where the robot needs
+room to stand up), each with random sizes within the paper's limits:
   blocks  an 8 cm and a 20 cm block to walk round, on either side of a passage of 0.34-0.45 m;
-  stairs  1 or 2 treads up (risers of 2-5 cm) and the same treads down, across the corridor;
+  stairs  1 or 2 treads up (risers of 2-4.5 cm) and the same treads down, across the corridor;
   gap     two 20 cm blocks from the walls, 0.20-0.26 m apart (narrower than the shoulders, so
           the robot side-steps through), in half the worlds with an 8 cm block before one;
   table   across the corridor, its top's upper face 0.56-0.64 m high (above the eyes, about
@@ -27,6 +28,7 @@ from random_worlds import WALL_H, WALL_T, flow, lst
 SECTIONS = ("blocks", "stairs", "gap", "table")
 NOISE = {"xy": 0.005, "yaw_deg": 0.5}  # per step, as scenarios/noisy_odometry.yaml
 HEAD_TOP = 0.56  # highest underside of a table top: below the standing head (0.58 m)
+MAX_RISE = 0.045  # highest riser: below the paper's 5 cm, which the planner's h_stairs meets exactly
 
 
 def r2(v):
@@ -50,8 +52,9 @@ class Course:
         self.objects = []
         x = r2(rng.uniform(0.55, 0.7))
         for i, section in enumerate(self.order):
-            if i:
-                x = r2(x + rng.uniform(0.35, 0.5))
+            if i:  # a robot crawling out from under a table stands up only 0.6 m past it
+                after_table = self.order[i - 1] == "table"
+                x = r2(x + rng.uniform(*(0.6, 0.7) if after_table else (0.35, 0.5)))
             x = getattr(self, "add_" + section)(x)
         self.goal = (r2(x + rng.uniform(0.4, 0.5)), r2(rng.uniform(-0.2, 0.2)))
         self.noise = rng.random() < 0.5
@@ -80,8 +83,8 @@ class Course:
         rng = self.rng
         heights, h = [], 0.0
         for _ in range(rng.randint(1, 2)):
-            h += r2(rng.uniform(0.02, 0.05))
-            heights.append(r2(h))
+            h += round(rng.uniform(0.02, MAX_RISE), 3)
+            heights.append(round(h, 3))
         heights += heights[-2::-1]  # down again by the same treads
         depths = [r2(rng.uniform(0.25, 0.35)) for _ in heights]
         self.objects.append(("stairs", {"name": "steps", "start": [x0, 0.0],

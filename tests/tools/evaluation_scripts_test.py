@@ -84,7 +84,8 @@ class CourseWorlds(unittest.TestCase):
             steps = parts["steps"][1]["steps"]
             levels = [0.0] + [h for _, h in steps] + [0.0]
             rises = [abs(b - a) for a, b in zip(levels, levels[1:])]
-            self.assertTrue(all(0.02 - 1e-9 <= r <= 0.05 + 1e-9 for r in rises), rises)
+            self.assertTrue(all(0.02 - 1e-9 <= r <= course_worlds.MAX_RISE + 1e-9 for r in rises),
+                            rises)
             self.assertLessEqual(len(steps), 3)
             left, right = parts["gap_left"][1], parts["gap_right"][1]
             gap = ((left["center"][1] - left["size"][1] / 2)
