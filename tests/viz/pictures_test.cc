@@ -86,6 +86,28 @@ TEST(FogPicture, HasALegendAndAMetreScaleUnderTheMap) {
   EXPECT_NEAR(longest, 150, 3);
 }
 
+TEST(FogErrorsPicture, ColoursCellsByHowTheyCompareWithTheTruth) {
+  // the truth: a floor with a block; the map holds the block's middle as floor (unsafe) and a
+  // floor cell far from it as obstacle (wrong class)
+  Fog truth = FlatFog(20, 20, 0.04);
+  FillBox(&truth, 0.2, 0.2, 0.4, 0.4, CellType::kObstacle, 0.3f);
+  Fog map = truth;
+  FillBox(&map, 0.28, 0.28, 0.32, 0.32, CellType::kFloor, 0.0f);
+  FillBox(&map, 0.64, 0.64, 0.68, 0.68, CellType::kObstacle, 0.3f);
+  const RgbImage img = DrawFogErrors(map, truth, perception::FogParams{}, {0.1, 0.7, 0.0}, 6);
+
+  // a cell's colour one pixel in from its corner (the unsafe cell's cross runs corner to corner)
+  auto colour = [&](int ix, int iy) {
+    const Eigen::Vector2i c = CellPixel(truth.window, 6, ix, iy);
+    return img.at(c.x() - 2, c.y() - 1);
+  };
+  EXPECT_TRUE(Same(colour(7, 7), Rgb{230, 0, 0}));     // unsafe: red
+  EXPECT_TRUE(Same(colour(16, 16), Rgb{40, 90, 200}));  // wrong class: blue
+  EXPECT_TRUE(Same(colour(15, 3), Rgb{215, 215, 215}));  // right: light grey
+  // the legend below the map
+  EXPECT_GT(img.height, 20 * 6 + 2 * 22);
+}
+
 TEST(PathPicture, DrawsThePathOverTheMap) {
   const Fog fog = CorridorWithTable();
   const Eigen::Vector2d goal(2.70, 1.22);
