@@ -6,11 +6,11 @@ Usage: scripts/sweep.py OUT_DIR SCENARIO.yaml... [--perceive] [--fognav PATH] [-
 
 Missions (default): each runs as `fognav run SCENARIO --out OUT_DIR/NAME --quiet`;
 OUT_DIR/results.tsv gets a row per mission (exit code, success, failure, detail, SPL, cycles,
-collisions) and the summary counts the passes (exit code 0). Missions whose world has no way
+collisions, the end map's FOG traversability and unsafe cells) and the summary counts the passes (exit code 0). Missions whose world has no way
 on the ground-truth map (optimal path length 0) are counted apart.
 --perceive: each runs `fognav perceive` instead (the start look-around, scored against ground
 truth); the rows hold segmentation accuracy, coverage and correct detections and the FOG
-accuracy, and the summary their means.
+scores (docs/scores.md), and the summary their means.
 --compare lists the scenarios whose outcome differs from an earlier sweep's results.tsv.
 OUT_DIR/index.html shows the summary and a table of the worlds (sorted by a click on a column's
 head), each with a thumbnail of its map that links to its report.html.
@@ -24,9 +24,10 @@ import os
 import subprocess
 import sys
 
-MISSION_COLUMNS = ["name", "exit", "success", "failure", "detail", "spl", "cycles", "collisions"]
+MISSION_COLUMNS = ["name", "exit", "success", "failure", "detail", "spl", "cycles", "collisions",
+                   "traversability", "unsafe"]
 PERCEIVE_COLUMNS = ["name", "exit", "accuracy", "coverage", "correct", "surfaces", "fog_accuracy",
-                    "fog_cells"]
+                    "fog_cells", "traversability", "unsafe"]
 
 
 def run_one(fognav, scenario, out_root, perceive):
@@ -52,6 +53,9 @@ def run_one(fognav, scenario, out_root, perceive):
     except (OSError, ValueError):
         row["detail"] = (proc.stderr.strip().splitlines() or ["no report"])[-1][:60]
         return row
+    fog = report.get("fog", {})  # docs/scores.md
+    row.update(traversability=f"{fog.get('traversability', 0):.4f}",
+               unsafe=fog.get("unsafe_cells", ""))
     if perceive:
         seg = report.get("segmentation", {})
         row.update(accuracy=f"{seg.get('accuracy', 0):.4f}",
@@ -100,12 +104,14 @@ def write_index(out_dir, rows, summary, perceive):
     """OUT_DIR/index.html: the summary, then a sortable table of the worlds with thumbnails."""
     if perceive:
         columns = [("world", "name"), ("exit", "exit"), ("segmentation accuracy", "accuracy"),
-                   ("coverage", "coverage"), ("FOG accuracy", "fog_accuracy")]
+                   ("coverage", "coverage"), ("FOG traversability", "traversability"),
+                   ("unsafe cells", "unsafe"), ("FOG six-type accuracy", "fog_accuracy")]
         thumbnail = "maps/plan.png"
     else:
         columns = [("world", "name"), ("outcome", "outcome"), ("failure", "failure"),
                    ("detail", "detail"), ("SPL", "spl"), ("cycles", "cycles"),
-                   ("wall time [s]", "wall_time")]
+                   ("wall time [s]", "wall_time"), ("FOG traversability", "traversability"),
+                   ("unsafe cells", "unsafe")]
         thumbnail = "maps/mission.png"
     e = html.escape
     lines = ["<!DOCTYPE html>", '<html lang="en"><head><meta charset="utf-8">',
@@ -183,7 +189,9 @@ def main():
                 print(f"FAIL {r['name']}: exit {r['exit']} {r['detail']}")
         summary = (f"sweep: {len(done)}/{len(rows)} perceived; mean segmentation accuracy "
                    f"{mean(done, 'accuracy'):.4f}, coverage {mean(done, 'coverage'):.4f}, "
-                   f"FOG accuracy {mean(done, 'fog_accuracy'):.4f}")
+                   f"FOG traversability {mean(done, 'traversability'):.4f}, unsafe cells "
+                   f"{sum(int(r['unsafe'] or 0) for r in done)}, six-type accuracy "
+                   f"{mean(done, 'fog_accuracy'):.4f}")
     else:
         valid = [r for r in rows if r["optimal"] != 0]
         passed = [r for r in valid if r["exit"] == 0]
