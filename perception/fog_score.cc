@@ -78,21 +78,16 @@ std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
         if (TraversabilityOf(truth.TypeAt(x, y)) != est) return false;
         return est != T::kStandable || std::abs(double(h) - truth.HeightAt(x, y)) <= params.h_floor;
       };
-      // truth cell (x, y) offers a floor within a step of the map's height
-      auto standable_at = [&](int x, int y) {
-        return TraversabilityOf(truth.TypeAt(x, y)) == T::kStandable &&
-               std::abs(double(h) - truth.HeightAt(x, y)) <= params.h_stairs;
-      };
       bool right_near = false, standable_near = false;
       for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
           const int x = c.x + dx, y = c.y + dy;
           if ((dx == 0 && dy == 0) || !wt.Contains(x, y)) continue;
           right_near = right_near || right_at(x, y);
-          standable_near = standable_near || standable_at(x, y);
+          standable_near = standable_near || TraversabilityOf(truth.TypeAt(x, y)) == T::kStandable;
         }
       }
-      const bool standable_over_blocked = est == T::kStandable && !standable_at(c.x, c.y);
+      const bool standable_over_blocked = est == T::kStandable && at != T::kStandable;
       FogCellComparison& r = out[size_t(we.Index(ix, iy))];
       if (right_at(c.x, c.y)) {
         r = FogCellComparison::kRight;
@@ -129,7 +124,7 @@ FogScore ScoreFog(const Fog& estimate, const Fog& truth, const FogParams& params
       const Traversability te = TraversabilityOf(e), tt = TraversabilityOf(t);
       const float he = estimate.HeightAt(ix, iy), ht = truth.HeightAt(c.x, c.y);
       if (te == Traversability::kStandable && tt != Traversability::kUnknown &&
-          !(tt == Traversability::kStandable && std::abs(double(he) - ht) <= params.h_stairs)) {
+          tt != Traversability::kStandable) {
         ++score.unsafe_cells_strict;
       }
       if (te == Traversability::kStandable && tt == Traversability::kStandable &&

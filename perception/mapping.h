@@ -502,18 +502,17 @@ Traversability TraversabilityOf(CellType type);
 
 // How a cell of an estimated FOG compares with the ground truth by traversability. The cell is
 // right at a truth cell whose class is its own and, for a standable cell, whose height is within
-// h_floor of its own; a cell right at none of its 8 neighbours nor itself is wrong. A standable
-// cell is unsafe where no truth cell in reach offers a floor within h_stairs of its height: it
-// is blocked or crawl-only there, or its floor is another surface (the floor under a table top
-// that the truth holds as the top).
+// h_floor of its own (params.h_floor); a cell right at none of its 8 neighbours nor itself is
+// wrong. A standable cell is unsafe where the truth at it and at all 8 neighbours is blocked or
+// crawl-only.
 enum class FogCellComparison : uint8_t {
   kUnobserved = 0,  // unknown in the estimate or in the truth, or outside the truth's window
   kRight,           // right at the cell itself
   kRightNearby,     // right at a neighbour only (a class edge smeared by a cell)
-  kStandableEdge,   // standable, right at a neighbour, but no floor within h_stairs at the cell
-  kWrongHeight,     // standable, a floor within h_stairs nearby, but none within h_floor
+  kStandableEdge,   // standable, right at a neighbour, but blocked or crawl-only at the cell
+  kWrongHeight,     // standable where the truth nearby is standable, at no height within h_floor
   kWrongClass,      // not standable, and right nowhere nearby (a floor lost, tunnel for blocked)
-  kUnsafe,          // standable, no floor within h_stairs at the cell nor its 8 neighbours
+  kUnsafe,          // standable where the truth at the cell and all 8 neighbours is not
 };
 inline constexpr int kNumFogCellComparisons = 7;
 
@@ -521,7 +520,6 @@ inline constexpr int kNumFogCellComparisons = 7;
 const char* FogCellComparisonName(FogCellComparison c);
 
 // Per cell of the estimate's window (window.Index order): its comparison with `truth`.
-// The tolerances are params.h_floor and params.h_stairs.
 std::vector<FogCellComparison> CompareFog(const Fog& estimate, const Fog& truth,
                                           const FogParams& params);
 
@@ -537,8 +535,8 @@ struct FogScore {
   std::array<int, kNumFogCellComparisons> comparisons{};
   int traversability_cells = 0;  // observed cells whose truth is known
   double traversability = 0;     // share of them right by traversability (0 if none)
-  int unsafe_cells = 0;          // compared unsafe: no floor near its height at or around it
-  int unsafe_cells_strict = 0;   // standable with no floor within h_stairs at the cell itself
+  int unsafe_cells = 0;          // standable where the truth at the cell and around is not
+  int unsafe_cells_strict = 0;   // standable where the truth at the cell is not
   // |estimated - true| floor height over cells both hold standable, metres.
   int height_cells = 0;
   double height_error_median = 0;
