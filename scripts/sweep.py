@@ -54,8 +54,9 @@ def run_one(fognav, scenario, out_root, perceive):
         row["detail"] = (proc.stderr.strip().splitlines() or ["no report"])[-1][:60]
         return row
     fog = report.get("fog", {})  # docs/scores.md
-    row.update(traversability=f"{fog.get('traversability', 0):.4f}",
-               unsafe=fog.get("unsafe_cells", ""))
+    if fog:
+        row.update(traversability=f"{fog.get('traversability', 0):.4f}",
+                   unsafe=fog.get("unsafe_cells", ""))
     if perceive:
         seg = report.get("segmentation", {})
         row.update(accuracy=f"{seg.get('accuracy', 0):.4f}",

@@ -168,7 +168,8 @@ TEST(FognavCli, SweepWritesAnIndexOfTheWorlds) {
                          "\"spl\": 0, \"cycles\": 9, \"optimal_path_length\": 2, "
                          "\"wall_time_s\": 1.5}' > \"$4/report.json\"; exit 1;;\n"
                          "*) echo '{\"success\": true, \"failure\": null, \"spl\": 0.9, "
-                         "\"cycles\": 4, \"optimal_path_length\": 2, \"wall_time_s\": 2.25}' > "
+                         "\"cycles\": 4, \"optimal_path_length\": 2, \"wall_time_s\": 2.25, "
+                         "\"fog\": {\"traversability\": 0.97, \"unsafe_cells\": 0}}' > "
                          "\"$4/report.json\"; echo png > \"$4/maps/mission.png\";;\nesac\n";
   std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
   const std::string command = "python3 scripts/sweep.py " + (tmp / "out").string() + " " +
@@ -186,10 +187,11 @@ TEST(FognavCli, SweepWritesAnIndexOfTheWorlds) {
   ASSERT_NE(a, std::string::npos) << html;
   ASSERT_NE(b, std::string::npos) << html;
   EXPECT_LT(a, b);
-  EXPECT_NE(html.find("<td>0.900</td><td>4</td><td>2.2</td><td><a href=\"a_world/report.html\">"
-                      "<img src=\"a_world/maps/mission.png\""),
+  EXPECT_NE(html.find("<td>0.900</td><td>4</td><td>2.2</td><td>0.9700</td><td>0</td>"
+                      "<td><a href=\"a_world/report.html\"><img src=\"a_world/maps/mission.png\""),
             std::string::npos);
-  EXPECT_NE(html.find("<td>1.5</td><td></td></tr>"), std::string::npos);  // no map, no image
+  // no FOG scores and no map: empty cells, no image
+  EXPECT_NE(html.find("<td>1.5</td><td></td><td></td><td></td></tr>"), std::string::npos);
   EXPECT_NE(html.find("<script>"), std::string::npos);
   EXPECT_EQ(html.find("<script src"), std::string::npos);
 }
