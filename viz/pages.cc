@@ -162,6 +162,17 @@ std::string Figure(const std::string& out_dir, const std::string& file, const st
          "></a><figcaption>" + Escape(caption) + "</figcaption></figure>\n";
 }
 
+// The window's maps both pages show beside their plan: the ground truth, the FOG against it,
+// the floor map and the 3D grid.
+std::string WindowMapFigures(const std::string& out_dir) {
+  return Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window") +
+         Figure(out_dir, "maps/fog_errors.png",
+                "the FOG against the truth (docs/scores.md); red: standable where it is not",
+                "window") +
+         Figure(out_dir, "maps/floor.png", "floor height map", "window") +
+         Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
+}
+
 void WriteText(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
@@ -405,12 +416,7 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
       "<h2>The maps at the end</h2>\n<p class=\"note\">The robot's 4 m window in the grid "
       "(odometry) frame.</p>\n";
   html += Figure(out_dir, "maps/final_plan.png", "believed FOG with the last plan", "window");
-  html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
-  html += Figure(out_dir, "maps/fog_errors.png",
-                 "the FOG against the truth (docs/scores.md); red: standable where it is not",
-                 "window");
-  html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
-  html += Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
+  html += WindowMapFigures(out_dir);
   html += Figure(out_dir, "maps/optimal_plan.png", "optimal plan on the ground truth", "window");
 
   if (!video_path.empty()) {
@@ -446,12 +452,7 @@ void WritePerceivePage(const std::string& out_dir) {
   html += "<h2>The maps after the look-around</h2>\n";
   html += Figure(out_dir, "maps/plan.png", "perceived FOG with the plan a mission would start with",
                  "window");
-  html += Figure(out_dir, "maps/fog_truth.png", "ground-truth FOG of the same window", "window");
-  html += Figure(out_dir, "maps/fog_errors.png",
-                 "the FOG against the truth (docs/scores.md); red: standable where it is not",
-                 "window");
-  html += Figure(out_dir, "maps/floor.png", "floor height map", "window");
-  html += Figure(out_dir, "maps/grid_side.png", "3D occupancy grid from the side", "window");
+  html += WindowMapFigures(out_dir);
 
   html += "<h2>Scores (perception.json)</h2>\n" + FiguresTable(report, {"views", "fog_confusion"});
 
