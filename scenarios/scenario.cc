@@ -266,7 +266,7 @@ const std::vector<std::string>& ActionNames() {
 
 const std::vector<std::string>& FailureNames() {
   static const std::vector<std::string> kNames = {"no_path", "collision", "off_floor",
-                                                  "timeout", "goal_not_reached"};
+                                                  "timeout"};
   return kNames;
 }
 
@@ -413,7 +413,7 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
       if (std::find(known.begin(), known.end(), failure) == known.end()) {
         r.Fail(expect["failure"], "expect.failure",
                "unknown failure '" + failure +
-                   "' (expected no_path, collision, off_floor, timeout or goal_not_reached)");
+                   "' (expected no_path, collision, off_floor or timeout)");
       }
       s.expect.failure = failure;
       if (s.expect.reach_goal.value_or(false)) {

@@ -168,7 +168,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "course.yaml:2: expect.actions_used[1]: unknown action 'fly'"},
         BadInput{"name: unit", "name: unit\nexpect: {failure: fell}",
                  "course.yaml:2: expect.failure: unknown failure 'fell' (expected no_path, "
-                 "collision, off_floor, timeout or goal_not_reached)"},
+                 "collision, off_floor or timeout)"},
+        // a failure no mission ends with (a scenario that expected it could never pass)
+        BadInput{"name: unit", "name: unit\nexpect: {failure: goal_not_reached}",
+                 "course.yaml:2: expect.failure: unknown failure 'goal_not_reached'"},
         BadInput{"name: unit", "name: unit\nlimits: {max_cycles: 0}",
                  "course.yaml:2: limits.max_cycles: expected an integer from 1"},
         // not YAML at all
