@@ -103,7 +103,7 @@ void Write(const std::string& path, const cv::Mat& img) {
   } catch (const cv::Exception&) {
     ok = false;
   }
-  if (!ok) throw std::runtime_error("cannot write map picture " + path);
+  if (!ok) throw OutputError(path + ": cannot write the map picture");
 }
 
 uint8_t RosValue(CellType t) {
@@ -256,7 +256,7 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
                       const MapParams& params, const Pose2& robot_G) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error("cannot create map directory " + dir + ": " + ec.message());
+  if (ec) throw OutputError(dir + ": cannot create the folder: " + ec.message());
   const std::filesystem::path d(dir);
   Write((d / "fog.png").string(), ToBgr(DrawFog(fog, robot_G)));
   Write((d / "floor.png").string(), ToBgr(DrawFloorMap(state)));
@@ -295,7 +295,7 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
        << "fognav_heights: {image: fog_heights.png, value: \"1000 + height_mm\", "
           "unknown: 0}\n"
        << "robot: [" << robot_G.x << ", " << robot_G.y << ", " << robot_G.yaw << "]\n";
-  if (!yaml) throw std::runtime_error("cannot write map file " + yaml_path);
+  if (!yaml) throw OutputError(yaml_path + ": cannot write the map file");
 }
 
 }  // namespace fognav::perception

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -523,16 +524,23 @@ RgbImage DrawFloorMap(const MapState& state, int pixels_per_cell = 6);
 // bottom); darker where more cells of the column are occupied.
 RgbImage DrawGridSideViews(const MapState& state, double p_occ, int pixels_per_cell = 6);
 
+// A file that cannot be written (a folder that cannot be created, a full disk); the message
+// names the file. The program maps it to its own exit code.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // The types of `fog` as a map_server image (row 0 the highest y; grey values of the legend
-// below). Throws std::runtime_error naming the file if it cannot be written.
+// below). Throws OutputError naming the file if it cannot be written.
 void WriteFogTypes(const std::string& path, const Fog& fog);
 // Writes into `dir` (created if needed): fog.png, floor.png, grid_side.png (pictures above);
 // fog_types.png + fog.yaml (ROS map_server: resolution, origin, trinary mode, and a
 // `fognav_types` legend of the grey value of each type: floor 254, stairs 190, tunnel 160,
 // unknown 205, border 40, obstacle 0 — so map_server reads floor free, border and obstacle
 // occupied, the rest unknown); fog_heights.png (16-bit, value = 1000 + height in millimetres,
-// clamped to [1, 65535], 0 where the height is -infinity). Throws std::runtime_error naming the
-// file if one cannot be written.
+// clamped to [1, 65535], 0 where the height is -infinity). Throws OutputError naming the file if
+// one cannot be written.
 void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& state,
                       const MapParams& params, const Pose2& robot_G);
 

@@ -26,12 +26,13 @@ struct MissionOptions {
 struct MissionOutcome {
   bool success = false;        // every expectation of the scenario held
   bool reached_goal = false;   // ground truth within the goal tolerance
-  std::string failure;         // "" or no_path, collision, timeout
+  std::string failure;         // "" or no_path, collision, off_floor, timeout
   std::string report_json;     // the text written to report.json
 };
 
-// Runs the mission. Throws InputError if the output cannot be written, sim::SimError if the
-// simulator cannot run.
+// Runs the mission. report.json is written last and whole (a stale one is removed first), so
+// it exists only for a mission that ended. Throws OutputError if an output file cannot be
+// written, sim::SimError if the simulator cannot run.
 MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options);
 
 }  // namespace fognav::scenarios

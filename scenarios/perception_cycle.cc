@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "navigation/planner.h"
+#include "scenarios/output.h"
 #include "sim/controller.h"
 
 namespace fognav::scenarios {
@@ -31,12 +31,6 @@ nlohmann::json ScoreJson(const perception::SegmentationScore& s) {
   return {{"accuracy", s.accuracy}, {"coverage", s.coverage}, {"correct", s.correct},
           {"over", s.over},         {"under", s.under},       {"missed", s.missed},
           {"noise", s.noise},       {"planes", s.planes},     {"truth_surfaces", s.truth_surfaces}};
-}
-
-void MakeDirectory(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir + ": cannot create the directory: " + error.message());
 }
 
 }  // namespace
@@ -148,7 +142,7 @@ perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow&
 
 void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
                      const std::string& prefix) {
-  MakeDirectory(dir);
+  MakeOutputFolder(dir);
   WritePng(view.left, dir + "/" + prefix + "_left.png");
   if (!result.disparity.empty()) {
     WritePng(perception::DrawDisparity(result.disparity), dir + "/" + prefix + "_disparity.png");
@@ -158,7 +152,7 @@ void WriteViewFrames(const StereoView& view, const ViewResult& result, const std
 
 std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,
                         const PerceptionParams& params) {
-  MakeDirectory(out_dir);
+  MakeOutputFolder(out_dir);
   sim::World world(MakeWorldSpec(scenario));
   sim::Controller controller(world.model());
   const sim::Humanoid& humanoid = controller.humanoid();
@@ -266,9 +260,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
         {"segmentation", perception::Median(segmentation_ms)},
         {"mapping", perception::Median(mapping_ms)}}}};
   std::string text = report.dump(2);
-  std::ofstream file(out_dir + "/perception.json");
-  file << text << "\n";
-  if (!file) throw InputError(out_dir + "/perception.json: could not write");
+  WriteFileAtomically(out_dir + "/perception.json", text + "\n");
   return text;
 }
 

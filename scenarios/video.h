@@ -25,7 +25,7 @@ class MissionVideo {
   static constexpr int kPanelWidth = 320, kPanelHeight = 240;
 
   // Opens `path` for writing: .avi is Motion-JPEG, .mp4 is MPEG-4 part 2. Throws InputError
-  // naming the path if the extension is neither or the file cannot be opened.
+  // naming the path if the extension is neither, OutputError if the file cannot be opened.
   MissionVideo(const std::string& path, double fps);
   ~MissionVideo();
   MissionVideo(const MissionVideo&) = delete;

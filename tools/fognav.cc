@@ -1,5 +1,6 @@
 // fognav: the command-line program. Parses flags and calls scenarios/; exit codes as DESIGN.md:
-// 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure.
+// 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure;
+// and since: 5 an output that could not be written.
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include "scenarios/clips.h"
 #include "scenarios/mission.h"
+#include "scenarios/output.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
@@ -19,8 +21,10 @@ constexpr int kExitOk = 0;
 constexpr int kExitExpectationFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSimFailure = 3;
+constexpr int kExitOutputError = 5;
 
 using fognav::scenarios::InputError;
+using fognav::scenarios::OutputError;
 using fognav::sim::SimError;
 
 int Validate(const std::string& path) {
@@ -158,11 +162,14 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::cerr << "fognav: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::cerr << "fognav: output: " << e.what() << "\n";
+    return kExitOutputError;
   } catch (const SimError& e) {
     std::cerr << "fognav: simulator: " << e.what() << "\n";
     return kExitSimFailure;
   } catch (const std::exception& e) {
-    // anything else (an output file that cannot be written mid-run, ...) stops the run
+    // anything else stops the run
     std::cerr << "fognav: could not run: " << e.what() << "\n";
     return kExitSimFailure;
   }

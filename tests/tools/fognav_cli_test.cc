@@ -1,4 +1,6 @@
 // Runs the fognav program and checks its exit codes and messages (DESIGN.md command line).
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -111,11 +113,65 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
             std::string::npos) << o.output;
 }
 
-TEST(FognavCli, UnwritableOutputIsExitCode2) {
-  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /proc/fognav_out");
+// issue 51's defects: each was exit code 3 ("could not run") or a message without its line
+TEST(FognavCli, BadScenarioOfAnyKindIsExitCode2WithFileAndLine) {
+  const std::string key_list = TempFile("fognav_cli_key_list.yaml", "name: x\n[a, b]: 1\n");
+  Outcome o = RunFognav("validate " + key_list);
   EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_NE(o.output.find("/proc/fognav_out"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output, "fognav: " + key_list + ":2: expected a plain name as a key, got a list\n");
+  const std::string top_list = TempFile("fognav_cli_top_list.yaml", "# a list\n- name: x\n");
+  o = RunFognav("validate " + top_list);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(top_list + ":2: expected a mapping"), std::string::npos) << o.output;
+  o = RunFognav("validate scenarios");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: scenarios: is a folder, expected a scenario file\n");
+  o = RunFognav("validate /dev/zero");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/dev/zero: the scenario is larger than 1 MB"), std::string::npos)
+      << o.output;
 }
+
+// An output folder that cannot be written is exit code 5 and names it: one that cannot be
+// created, and one that exists but takes no files (a read-only folder; /proc/self takes none
+// even for root, who may write into a read-only folder)
+TEST(FognavCli, UnwritableOutputIsExitCode5) {
+  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /proc/fognav_out");
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_NE(o.output.find("fognav: output: /proc/fognav_out"), std::string::npos) << o.output;
+  o = RunFognav("run scenarios/obstacles.yaml --quiet --out /proc/self");
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_NE(o.output.find("fognav: output: /proc/self/trajectory.csv: cannot write"),
+            std::string::npos) << o.output;
+  if (geteuid() != 0) {
+    const auto dir = std::filesystem::temp_directory_path() / "fognav_cli_read_only";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_read |
+                                          std::filesystem::perms::owner_exec);
+    o = RunFognav("run scenarios/obstacles.yaml --quiet --out " + dir.string());
+    EXPECT_EQ(o.exit_code, 5) << o.output;
+    EXPECT_NE(o.output.find(dir.string() + "/trajectory.csv: cannot write"), std::string::npos)
+        << o.output;
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
+  }
+}
+
+// A full disk (a log pointed at /dev/full) ends the run with exit code 5, a message naming the
+// file and the reason, and no report.json: not even one an earlier run left there
+TEST(FognavCli, FullDiskIsExitCode5AndLeavesNoReport) {
+  const auto dir = std::filesystem::temp_directory_path() / "fognav_cli_full";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "report.json") << R"({"success": true})";
+  std::filesystem::create_symlink("/dev/full", dir / "cycles.csv");
+  Outcome o = RunFognav("run scenarios/obstacles.yaml --quiet --out " + dir.string());
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_EQ(o.output, "fognav: output: " + dir.string() +
+                          "/cycles.csv: cannot write: No space left on device\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.json"));
+}
+
 
 TEST(FognavCli, NoOSMesaIsExitCode3) {
   // as on a machine without libOSMesa: the simulator cannot render
