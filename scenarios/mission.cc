@@ -929,6 +929,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       failure = "timeout";
       break;
     }
+    if (options.stop && options.stop->load()) {
+      failure = "interrupted";
+      break;
+    }
     ++cycle;
 
     // plan from where odometry says the robot is
@@ -1361,13 +1365,14 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   for (const auto& action : expect.actions_used) success = success && actions[action] > 0;
   if (expect.no_collision.value_or(false) && !controller.collisions().empty()) success = false;
   // reach_goal: false alone expects the mission to end short of the goal, whatever the failure;
-  // `failure` names the one it must end with
+  // `failure` names the one it must end with; an interrupted mission never succeeds
   if (expect.failure) {
     success = success && failure == *expect.failure;
   } else if (!failure.empty() && expect.reach_goal.value_or(true) &&
              !(failure == "collision" && !expect.no_collision.value_or(false))) {
     success = false;
   }
+  if (failure == "interrupted") success = false;
 
   // pictures of the end state
   MakeOutputFolder(options.out_dir + "/frames");

@@ -5,6 +5,7 @@
 #ifndef FOGNAV_SCENARIOS_MISSION_H_
 #define FOGNAV_SCENARIOS_MISSION_H_
 
+#include <atomic>
 #include <string>
 
 #include "scenarios/scenario.h"
@@ -20,13 +21,17 @@ struct MissionOptions {
   std::string video_path;
   double video_period_s = 0.1;
   double video_fps = 20;
+  // if set, read at the start of every cycle: once true, the mission ends there with failure
+  // "interrupted" and writes its report, logs and maps as at any other end (a signal handler
+  // sets it)
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // What a mission ended with; the full figures are in the report.
 struct MissionOutcome {
   bool success = false;        // every expectation of the scenario held
   bool reached_goal = false;   // ground truth within the goal tolerance
-  std::string failure;         // "" or no_path, collision, off_floor, timeout
+  std::string failure;         // "" or no_path, collision, off_floor, timeout, interrupted
   std::string report_json;     // the text written to report.json
 };
 

@@ -1,12 +1,20 @@
 // Runs the fognav program and checks its exit codes and messages (DESIGN.md command line).
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -172,6 +180,82 @@ TEST(FognavCli, FullDiskIsExitCode5AndLeavesNoReport) {
   EXPECT_FALSE(std::filesystem::exists(dir / "report.json"));
 }
 
+// Lines of a text file.
+std::vector<std::string> ReadLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// SIGINT (Ctrl-C) and SIGTERM end a running mission after its cycle with exit code 4, and it
+// keeps its data: report.json with failure "interrupted", trajectory.csv and cycles.csv up to
+// that cycle, the last maps and frames
+class Interrupted : public ::testing::TestWithParam<int> {};
+
+TEST_P(Interrupted, MissionWritesItsDataAndExitsWith4) {
+  const int signal = GetParam();
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("fognav_cli_interrupted_" + std::to_string(signal)))
+                              .string();
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  const std::string log = out + "/../fognav_cli_interrupted_" + std::to_string(signal) + ".log";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> args = {FOGNAV_BINARY, "run", "scenarios/stairs_and_table.yaml",
+                                   "--out", out, "--quiet"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, FOGNAV_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+
+  // the signal once two cycles are logged (the log reaches the disk every cycle)
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (ReadLines(out + "/cycles.csv").size() < 3 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(kill(pid, signal), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  std::ifstream log_file(log);
+  const std::string output(std::istreambuf_iterator<char>(log_file), {});
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << output;
+  EXPECT_NE(output.find("fognav: interrupted; report.json, trajectory.csv, cycles.csv and maps/"),
+            std::string::npos) << output;
+
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/report.json"));
+  EXPECT_EQ(report["failure"], "interrupted");
+  EXPECT_FALSE(report["success"].get<bool>());
+  EXPECT_FALSE(report["reached_goal"].get<bool>());
+  // the mission stopped at the end of a cycle well short of the goal (the course takes 50-60)
+  const int cycles = report["cycles"].get<int>();
+  EXPECT_GE(cycles, 2);
+  EXPECT_LT(cycles, 40);
+  // a row per cycle up to the last, and a row per footstep taken
+  const auto cycle_rows = ReadLines(out + "/cycles.csv");
+  ASSERT_EQ(int(cycle_rows.size()), cycles + 1);
+  EXPECT_EQ(cycle_rows.back().substr(0, cycle_rows.back().find(',')), std::to_string(cycles));
+  const auto steps = ReadLines(out + "/trajectory.csv");
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_EQ(steps.back().substr(0, steps.back().find(',')),
+            std::to_string(report["steps"].get<int>()));
+  for (const char* file : {"maps/fog.png", "maps/fog_types.png", "maps/final_plan.png",
+                           "frames/final_left.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupted, ::testing::Values(SIGINT, SIGTERM),
+                         [](const auto& info) {
+                           return std::string(info.param == SIGINT ? "SIGINT" : "SIGTERM");
+                         });
 
 TEST(FognavCli, NoOSMesaIsExitCode3) {
   // as on a machine without libOSMesa: the simulator cannot render
