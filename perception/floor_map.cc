@@ -203,6 +203,7 @@ namespace fognav::perception {
 
 void FadeGrid(const MapParams& params, double keep, MapState* state) {
   MapState& s = *state;
+  if (s.log_odds.empty()) return;  // never updated: its window has no cells yet
   for (int iy = 0; iy < s.window.size_y; ++iy) {
     for (int ix = 0; ix < s.window.size_x; ++ix) {
       const size_t cell = size_t(s.window.Index(ix, iy));
