@@ -39,11 +39,12 @@ static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs 
 void RequestStop(int) { stop_requested = true; }
 
 // SIGINT and SIGTERM end the run after its cycle; a second one of the same kind ends the
-// process at once (SA_RESETHAND restores the default action)
+// process at once (SA_RESETHAND restores the default action). SA_RESTART: a write under way
+// goes on rather than failing as interrupted.
 void StopOnSignals() {
   struct sigaction action = {};
   action.sa_handler = RequestStop;
-  action.sa_flags = SA_RESETHAND;
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
