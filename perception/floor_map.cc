@@ -10,7 +10,11 @@ namespace fognav::perception::internal {
 
 void LayersNear(const MapState& state, double z, double tol, int* lo, int* hi) {
   const float inv_res = float(1.0 / state.window.resolution);
-  const float zl = (float(z) - float(state.z_min)) * inv_res, tl = float(tol) * inv_res;
+  const float tl = float(tol) * inv_res;
+  // a height far outside the grid (any float) comes to just beyond its layers: the same empty
+  // range, and a layer index that an int holds
+  const float zl = std::clamp((float(z) - float(state.z_min)) * inv_res, -2.0f - tl,
+                              float(state.size_z) + 1.0f + tl);
   *lo = std::max(0, FastFloor(zl - tl));
   *hi = std::min(state.size_z - 1, FastFloor(zl + tl));
 }
@@ -203,6 +207,7 @@ namespace fognav::perception {
 
 void FadeGrid(const MapParams& params, double keep, MapState* state) {
   MapState& s = *state;
+  if (s.log_odds.empty()) return;  // never updated: its window has no cells yet
   for (int iy = 0; iy < s.window.size_y; ++iy) {
     for (int ix = 0; ix < s.window.size_x; ++ix) {
       const size_t cell = size_t(s.window.Index(ix, iy));

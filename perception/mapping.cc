@@ -591,6 +591,7 @@ void UpdateNoFloor(const MapParams& map_params, const MapInput& input, MapState*
   const double drop = input.floor_z - c.z();  // negative: the camera is above the floor
   if (!(drop < 0)) return;
   for (const Eigen::Vector3f& d : input.empty_rays_G) {
+    if (!d.allFinite() || !(d.z() < 0)) continue;  // meets no floor below the camera
     const double t = drop / double(d.z());
     if (t * double(d.norm()) < params.min_distance) continue;
     const double x = c.x() + t * double(d.x()), y = c.y() + t * double(d.y());

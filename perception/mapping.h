@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -461,6 +462,7 @@ void ScrollMaps(const MapParams& params, const Pose2& robot_G, MapState* state);
 // the layers that hold each cell's floor height (those eq. 20 verifies it against, within
 // verify_tolerance): a fresh look then outvotes old evidence without dropping known floors,
 // among them a table top held by a single weak layer whose floor seen below would take its cell.
+// A state that was never updated (empty) stays as it is.
 void FadeGrid(const MapParams& params, double keep, MapState* state);
 
 // One perception cycle (Sections 5.1-5.3): scroll to the robot, update the 3D grid by ray
@@ -544,6 +546,13 @@ struct FogScore {
   double height_error_max = 0;
 };
 FogScore ScoreFog(const Fog& estimate, const Fog& truth, const FogParams& params);
+
+// A file that cannot be written (a folder that cannot be created, a full disk); the message
+// names the file. The program maps it to its own exit code.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 }  // namespace fognav::perception
 

@@ -80,14 +80,14 @@ void WriteStrip(const std::string& dir, int frames) {
     char name[32];
     std::snprintf(name, sizeof(name), "/frame_%05d.png", frame);
     cv::Mat image = cv::imread(dir + name);
-    if (image.empty()) throw InputError(dir + name + ": cannot read back the clip frame");
+    if (image.empty()) throw OutputError(dir + name + ": cannot read back the clip frame");
     if (!row.empty())
       row.push_back(cv::Mat(image.rows, 2, image.type(), cv::Scalar(255, 255, 255)));
     row.push_back(image);
   }
   cv::Mat strip;
   cv::hconcat(row, strip);
-  if (!cv::imwrite(dir + "/strip.png", strip)) throw InputError(dir + "/strip.png: cannot write");
+  if (!cv::imwrite(dir + "/strip.png", strip)) throw OutputError(dir + "/strip.png: cannot write");
 }
 
 }  // namespace
@@ -110,9 +110,7 @@ ClipResult RecordClip(const std::string& motion, const std::string& dir, int eve
     throw InputError("clip motion '" + motion + "': unknown, expected one of " + known);
   }
   if (every <= 0) throw InputError("clip --every " + std::to_string(every) + ": must be positive");
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir + ": cannot create the output directory: " + error.message());
+  MakeOutputFolder(dir);
 
   const std::string yaml = std::string("name: clip_") + spec->motion +
                            "\nrobot: {start: [0, 0, 0]}\ngoal: {position: [1.5, 0]}\n"

@@ -21,8 +21,9 @@ struct ClipResult {
 
 // Runs `motion` in a small world of its own and writes DIR/frame_00000.png, ... (one frame
 // every `every` control ticks, 320x240, from a camera beside the course) and DIR/strip.png (six
-// frames across the motion side by side). Throws InputError for an unknown motion, a
-// non-positive `every` or an unwritable DIR, sim::SimError if the simulator cannot run.
+// frames across the motion side by side). Throws InputError for an unknown motion or a
+// non-positive `every`, OutputError for an unwritable DIR, sim::SimError if the simulator cannot
+// run.
 ClipResult RecordClip(const std::string& motion, const std::string& dir, int every = 5);
 
 }  // namespace fognav::scenarios

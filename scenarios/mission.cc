@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +21,7 @@
 
 #include "navigation/planner.h"
 #include "perception/step_edge.h"
+#include "scenarios/output.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/video.h"
 #include "sim/controller.h"
@@ -484,16 +487,31 @@ std::optional<Peek> PeekPose(const perception::Fog& fog, const perception::Pose2
 
 MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options) {
   const auto wall_start = Clock::now();
+  MakeOutputFolder(options.out_dir);
+  // a report left from an earlier run must not pass for this run's
   std::error_code error;
-  std::filesystem::create_directories(options.out_dir, error);
-  if (error) throw InputError(options.out_dir + ": cannot create the output directory: " + error.message());
+  std::filesystem::remove(options.out_dir + "/report.json", error);
   std::ofstream trajectory(options.out_dir + "/trajectory.csv");
-  if (!trajectory) throw InputError(options.out_dir + "/trajectory.csv: cannot write");
+  if (!trajectory) throw OutputError(options.out_dir + "/trajectory.csv: cannot write");
   trajectory << "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n";
   std::ofstream cycles_csv(options.out_dir + "/cycles.csv");
-  if (!cycles_csv) throw InputError(options.out_dir + "/cycles.csv: cannot write");
+  if (!cycles_csv) throw OutputError(options.out_dir + "/cycles.csv: cannot write");
   cycles_csv << "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,decision,"
                 "target_x,target_y,explorations,thrashes\n";
+  // the logs reach the disk every cycle: a full disk ends the run there, and they can be read
+  // while it runs
+  auto flush_logs = [&]() {
+    const std::pair<std::ofstream*, const char*> logs[] = {{&trajectory, "trajectory.csv"},
+                                                           {&cycles_csv, "cycles.csv"}};
+    for (const auto& [log, name] : logs) {
+      errno = 0;
+      if (!log->flush()) {
+        throw OutputError(options.out_dir + "/" + name + ": cannot write: " +
+                          (errno != 0 ? std::strerror(errno) : "the stream failed"));
+      }
+    }
+  };
+  flush_logs();
   const bool progress = !options.quiet && isatty(STDERR_FILENO);
   std::unique_ptr<MissionVideo> video;
   if (!options.video_path.empty()) {
@@ -887,6 +905,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
                   r.cost, r.length, r.decision, target, explorations, thrashes);
     cycles_csv << row;
     log_row.reset();
+    flush_logs();
   };
   auto decide = [&](const char* decision,
                     const std::optional<Eigen::Vector2d>& target = std::nullopt) {
@@ -910,6 +929,10 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
     if (cycle >= scenario.max_cycles || controller.steps() >= scenario.max_steps) {
       failure = "timeout";
+      break;
+    }
+    if (options.stop && options.stop->load()) {
+      failure = "interrupted";
       break;
     }
     ++cycle;
@@ -1296,7 +1319,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       char name[32];
       std::snprintf(name, sizeof(name), "cycle%04d", cycle);
       WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", name);
-      std::filesystem::create_directories(options.out_dir + "/maps");
+      MakeOutputFolder(options.out_dir + "/maps");
       WritePng(viz::DrawPlanPicture(fog, believed, plan, scenario.goal),
                options.out_dir + "/maps/" + name + "_plan.png");
     }
@@ -1306,6 +1329,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
     }
   }
   log_cycle();
+  flush_logs();
   if (progress) std::fprintf(stderr, "\n");
 
   // scores against the ground truth
@@ -1343,14 +1367,18 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   if (expect.reach_goal && *expect.reach_goal != reached_goal) success = false;
   for (const auto& action : expect.actions_used) success = success && actions[action] > 0;
   if (expect.no_collision.value_or(false) && !controller.collisions().empty()) success = false;
+  // reach_goal: false alone expects the mission to end short of the goal, whatever the failure;
+  // `failure` names the one it must end with; an interrupted mission never succeeds
   if (expect.failure) {
     success = success && failure == *expect.failure;
-  } else if (!failure.empty() && !(failure == "collision" && !expect.no_collision.value_or(false))) {
+  } else if (!failure.empty() && expect.reach_goal.value_or(true) &&
+             !(failure == "collision" && !expect.no_collision.value_or(false))) {
     success = false;
   }
+  if (failure == "interrupted") success = false;
 
   // pictures of the end state
-  std::filesystem::create_directories(options.out_dir + "/frames");
+  MakeOutputFolder(options.out_dir + "/frames");
   WriteViewFrames(last_stereo, last_view, options.out_dir + "/frames", "final");
   viz::WriteMapPictures(options.out_dir + "/maps", fog, maps, perception_params.map, believed);
   WritePng(viz::DrawPlanPicture(fog, believed, plan, scenario.goal),
@@ -1400,11 +1428,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   outcome.reached_goal = reached_goal;
   outcome.failure = failure;
   outcome.report_json = report.dump(2);
-  std::ofstream file(options.out_dir + "/report.json");
-  file << outcome.report_json << "\n";
-  if (!file) throw InputError(options.out_dir + "/report.json: could not write");
-  // the page reads the files back: they must be complete
-  file.close();
+  WriteFileAtomically(options.out_dir + "/report.json", outcome.report_json + "\n");
+  // the page reads the tables back: they must be complete
   trajectory.close();
   cycles_csv.close();
   viz::WriteMissionPage(options.out_dir, world_fog, optimal, scenario.start, scenario.goal,

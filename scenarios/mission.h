@@ -5,6 +5,7 @@
 #ifndef FOGNAV_SCENARIOS_MISSION_H_
 #define FOGNAV_SCENARIOS_MISSION_H_
 
+#include <atomic>
 #include <string>
 
 #include "scenarios/scenario.h"
@@ -20,18 +21,23 @@ struct MissionOptions {
   std::string video_path;
   double video_period_s = 0.1;
   double video_fps = 20;
+  // if set, read at the start of every cycle: once true, the mission ends there with failure
+  // "interrupted" and writes its report, logs and maps as at any other end (a signal handler
+  // sets it)
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // What a mission ended with; the full figures are in the report.
 struct MissionOutcome {
   bool success = false;        // every expectation of the scenario held
   bool reached_goal = false;   // ground truth within the goal tolerance
-  std::string failure;         // "" or no_path, collision, timeout
+  std::string failure;         // "" or no_path, collision, off_floor, timeout, interrupted
   std::string report_json;     // the text written to report.json
 };
 
-// Runs the mission. Throws InputError if the output cannot be written, sim::SimError if the
-// simulator cannot run.
+// Runs the mission. report.json is written last and whole (a stale one is removed first), so
+// it exists only for a mission that ended. Throws OutputError if an output file cannot be
+// written, sim::SimError if the simulator cannot run.
 MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options);
 
 }  // namespace fognav::scenarios

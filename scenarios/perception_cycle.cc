@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
 
 #include "navigation/planner.h"
+#include "scenarios/output.h"
 #include "sim/controller.h"
 #include "viz/pages.h"
 #include "viz/pictures.h"
@@ -33,19 +33,6 @@ nlohmann::json ScoreJson(const perception::SegmentationScore& s) {
   return {{"accuracy", s.accuracy}, {"coverage", s.coverage}, {"correct", s.correct},
           {"over", s.over},         {"under", s.under},       {"missed", s.missed},
           {"noise", s.noise},       {"planes", s.planes},     {"truth_surfaces", s.truth_surfaces}};
-}
-
-// Writes text and a newline to path; throws InputError naming it if it cannot.
-void WriteText(const std::string& path, const std::string& text) {
-  std::ofstream file(path);
-  file << text << "\n";
-  if (!file) throw InputError(path + ": could not write");
-}
-
-void MakeDirectory(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir + ": cannot create the directory: " + error.message());
 }
 
 }  // namespace
@@ -175,7 +162,7 @@ perception::Fog TruthFog(const Scenario& scenario, const perception::GridWindow&
 
 void WriteViewFrames(const StereoView& view, const ViewResult& result, const std::string& dir,
                      const std::string& prefix) {
-  MakeDirectory(dir);
+  MakeOutputFolder(dir);
   WritePng(view.left, dir + "/" + prefix + "_left.png");
   if (!result.disparity.empty()) {
     WritePng(viz::DrawDisparity(result.disparity), dir + "/" + prefix + "_disparity.png");
@@ -185,7 +172,7 @@ void WriteViewFrames(const StereoView& view, const ViewResult& result, const std
 
 std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,
                         const PerceptionParams& params) {
-  MakeDirectory(out_dir);
+  MakeOutputFolder(out_dir);
   sim::World world(MakeWorldSpec(scenario));
   sim::Controller controller(world.model());
   const sim::Humanoid& humanoid = controller.humanoid();
@@ -295,14 +282,14 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
         {"segmentation", perception::Median(segmentation_ms)},
         {"mapping", perception::Median(mapping_ms)}}}};
   std::string text = report.dump(2);
-  WriteText(out_dir + "/perception.json", text);
+  WriteFileAtomically(out_dir + "/perception.json", text + "\n");
   viz::WritePerceivePage(out_dir);
   return text;
 }
 
 std::string RunPerceiveBoth(const Scenario& scenario, const std::string& out_dir, bool quiet,
                             const PerceptionParams& params) {
-  MakeDirectory(out_dir);
+  MakeOutputFolder(out_dir);
   nlohmann::json both = {{"scenario", scenario.name}, {"depth", "both"}};
   for (const DepthMode mode : {DepthMode::kStereo, DepthMode::kIdeal}) {
     const char* name = mode == DepthMode::kStereo ? "stereo" : "ideal";
@@ -311,7 +298,7 @@ std::string RunPerceiveBoth(const Scenario& scenario, const std::string& out_dir
     both[name] = nlohmann::json::parse(RunPerceive(s, out_dir + "/" + name, quiet, params));
   }
   std::string text = both.dump(2);
-  WriteText(out_dir + "/perception.json", text);
+  WriteFileAtomically(out_dir + "/perception.json", text + "\n");
   return text;
 }
 

@@ -95,7 +95,7 @@ nlohmann::json FogScoreJson(const perception::FogScore& s);
 
 // `fognav perceive`: keeps the robot at its start pose, runs the look-around head sweep,
 // perceives every view and writes DIR/perception.json, DIR/frames/ and DIR/maps/.
-// Returns the JSON text it wrote. Throws InputError for an unwritable DIR, SimError if the
+// Returns the JSON text it wrote. Throws OutputError for an unwritable DIR, SimError if the
 // simulator cannot run. `params` may change the perception (the UB line method, for the
 // paper's comparison).
 std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bool quiet,

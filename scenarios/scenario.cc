@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -32,12 +33,13 @@ class Reader {
  public:
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
+  // throws InputError "source:line: key: what" (no key at the top level)
   [[noreturn]] void Fail(const YAML::Node& at, const std::string& key,
                          const std::string& what) const {
     std::ostringstream message;
     message << source_;
     if (at.IsDefined() && at.Mark().line >= 0) message << ":" << at.Mark().line + 1;
-    message << ": " << key << ": " << what;
+    message << ": " << (key.empty() ? "" : key + ": ") << what;
     throw InputError(message.str());
   }
 
@@ -46,7 +48,11 @@ class Reader {
            const std::set<std::string>& required = {}) const {
     if (!node.IsMap()) Fail(node, key, "expected a mapping");
     for (const auto& entry : node) {
-      std::string name = entry.first.as<std::string>();
+      // a list or a mapping used as a key names nothing the format knows
+      if (!entry.first.IsScalar()) {
+        Fail(entry.first, key, "expected a plain name as a key, got " + Kind(entry.first));
+      }
+      std::string name = entry.first.Scalar();
       if (!allowed.count(name)) {
         std::string list;
         for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
@@ -127,6 +133,14 @@ class Reader {
   Eigen::Vector2d Vec2(const YAML::Node& node, const std::string& key) const {
     auto v = Numbers(node, key, 2);
     return {v[0], v[1]};
+  }
+
+  // what a node is, for messages
+  static std::string Kind(const YAML::Node& node) {
+    if (node.IsSequence()) return "a list";
+    if (node.IsMap()) return "a mapping";
+    if (node.IsScalar()) return "'" + node.Scalar() + "'";
+    return "nothing";
   }
 
   static std::string Join(const std::string& parent, const std::string& child) {
@@ -252,19 +266,20 @@ const std::vector<std::string>& ActionNames() {
 
 const std::vector<std::string>& FailureNames() {
   static const std::vector<std::string> kNames = {"no_path", "collision", "off_floor",
-                                                  "timeout", "goal_not_reached"};
+                                                  "timeout"};
   return kNames;
 }
 
-Scenario ParseScenario(const std::string& yaml_text, const std::string& source) {
-  Reader r(source);
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::ParserException& e) {
-    throw InputError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+namespace {
+
+Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& source) {
+  if (!root.IsMap()) {
+    // an empty file has no mark: its first line is meant
+    const int line = root.IsDefined() && root.Mark().line >= 0 ? root.Mark().line + 1 : 1;
+    throw InputError(source + ":" + std::to_string(line) +
+                     ": expected a mapping (name, robot, goal, world) at the top level, got " +
+                     (root.IsNull() ? std::string("an empty document") : Reader::Kind(root)));
   }
-  if (!root.IsMap()) throw InputError(source + ": expected a YAML mapping at the top level");
   r.Map(root, "",
         {"name", "description", "seed", "robot", "goal", "world", "sensor", "odometry_noise",
          "limits", "expect"},
@@ -398,7 +413,7 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
       if (std::find(known.begin(), known.end(), failure) == known.end()) {
         r.Fail(expect["failure"], "expect.failure",
                "unknown failure '" + failure +
-                   "' (expected no_path, collision, off_floor, timeout or goal_not_reached)");
+                   "' (expected no_path, collision, off_floor or timeout)");
       }
       s.expect.failure = failure;
       if (s.expect.reach_goal.value_or(false)) {
@@ -411,12 +426,43 @@ Scenario ParseScenario(const std::string& yaml_text, const std::string& source) 
   return s;
 }
 
+}  // namespace
+
+Scenario ParseScenario(const std::string& yaml_text, const std::string& source) {
+  if (yaml_text.size() > kMaxScenarioBytes) {
+    throw InputError(source + ": the scenario is larger than 1 MB (" +
+                     std::to_string(kMaxScenarioBytes) + " bytes); no scenario is that large");
+  }
+  Reader r(source);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(source + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  try {
+    return ParseRoot(r, root, source);
+  } catch (const YAML::Exception& e) {
+    // the reader checks every node before it converts it; should a conversion still fail, the
+    // input is at fault, not the program
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw InputError(source + line + ": " + e.msg);
+  }
+}
+
 Scenario LoadScenario(const std::string& path) {
-  std::ifstream file(path);
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) {
+    throw InputError(path + ": is a folder, expected a scenario file");
+  }
+  std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot read the scenario file");
-  std::stringstream text;
-  text << file.rdbuf();
-  return ParseScenario(text.str(), path);
+  // read one byte past the bound, so that an endless file (/dev/zero) stops there
+  std::string text(kMaxScenarioBytes + 1, '\0');
+  file.read(text.data(), std::streamsize(text.size()));
+  if (file.bad()) throw InputError(path + ": cannot read the scenario file");
+  text.resize(size_t(file.gcount()));
+  return ParseScenario(text, path);
 }
 
 bool OverFloor(const Scenario& scenario, const Eigen::Vector2d& p_W) {

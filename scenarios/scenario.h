@@ -3,6 +3,7 @@
 #ifndef FOGNAV_SCENARIOS_SCENARIO_H_
 #define FOGNAV_SCENARIOS_SCENARIO_H_
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -110,10 +111,15 @@ const std::vector<std::string>& ActionNames();
 // Failure names a scenario may give in expect.failure.
 const std::vector<std::string>& FailureNames();
 
-// Reads and validates a scenario file. Throws InputError naming file, line and key.
+// The largest scenario file, bytes (1 MB); the shipped ones are under 2 kB.
+constexpr size_t kMaxScenarioBytes = size_t(1) << 20;
+
+// Reads and validates a scenario file. Throws InputError naming file, line and key; a folder
+// or a file larger than kMaxScenarioBytes is an InputError too.
 Scenario LoadScenario(const std::string& path);
 
-// Parses and validates scenario text; `source` names it in messages.
+// Parses and validates scenario text (at most kMaxScenarioBytes); `source` names it in
+// messages.
 Scenario ParseScenario(const std::string& yaml_text, const std::string& source);
 
 // A named solid of the world in the world frame; every object is made of these (a table is

@@ -67,7 +67,7 @@ MissionVideo::MissionVideo(const std::string& path, double fps)
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   const cv::Size size(3 * kPanelWidth, kTitleHeight + kPanelHeight + kStatusHeight);
   if (!writer_->open(path, fourcc, fps, size, true)) {
-    throw InputError(path + ": --video: could not open the file for writing");
+    throw OutputError(path + ": --video: could not open the file for writing");
   }
 }
 

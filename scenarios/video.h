@@ -26,7 +26,7 @@ class MissionVideo {
 
   // Opens `path` for writing: .avi is Motion-JPEG, .mp4 is MPEG-4 part 2, .webm is VP8 (which
   // browsers play, so report.html shows it). Throws InputError naming the path if the
-  // extension is none of these or the file cannot be opened.
+  // extension is none of these, OutputError if the file cannot be opened.
   MissionVideo(const std::string& path, double fps);
   ~MissionVideo();
   MissionVideo(const MissionVideo&) = delete;

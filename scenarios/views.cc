@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -104,7 +103,7 @@ perception::RgbImage RenderOverview(sim::Renderer* renderer, const sim::World& w
 namespace {
 
 void WriteImage(const std::string& path, const cv::Mat& image) {
-  if (!cv::imwrite(path, image)) throw InputError(path + ": could not write the image");
+  if (!cv::imwrite(path, image)) throw OutputError(path + ": could not write the image");
 }
 
 // a distinct, stable colour for each surface id
@@ -128,9 +127,7 @@ void WritePng(const perception::RgbImage& image, const std::string& path) {
 }
 
 void WriteStereoView(const StereoView& view, const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir + ": cannot create the output directory: " + error.message());
+  MakeOutputFolder(dir);
   const int w = view.left.width, h = view.left.height;
   WritePng(view.left, dir + "/left.png");
   WritePng(view.right, dir + "/right.png");
@@ -154,9 +151,7 @@ void WriteStereoView(const StereoView& view, const std::string& dir) {
   for (int r = 0; r < 4; ++r) {
     intrinsics["X_WL"].push_back({X_WL(r, 0), X_WL(r, 1), X_WL(r, 2), X_WL(r, 3)});
   }
-  std::ofstream json(dir + "/intrinsics.json");
-  json << intrinsics.dump(2) << "\n";
-  if (!json) throw InputError(dir + "/intrinsics.json: could not write");
+  WriteFileAtomically(dir + "/intrinsics.json", intrinsics.dump(2) + "\n");
 }
 
 }  // namespace fognav::scenarios

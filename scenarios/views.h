@@ -6,6 +6,7 @@
 #include <string>
 
 #include "perception/types.h"
+#include "scenarios/output.h"
 #include "scenarios/scenario.h"
 #include "sim/render.h"
 #include "sim/world.h"
@@ -43,12 +44,12 @@ Eigen::Isometry3d LookAt(const Eigen::Vector3d& eye, const Eigen::Vector3d& targ
 perception::RgbImage RenderOverview(sim::Renderer* renderer, const sim::World& world,
                                     const Scenario& scenario);
 
-// Writes an RGB image as PNG. Throws InputError naming the path if it cannot.
+// Writes an RGB image as PNG. Throws OutputError naming the path if it cannot.
 void WritePng(const perception::RgbImage& image, const std::string& path);
 
 // Writes left.png, right.png, depth.png (16-bit millimetres, 0 = nothing seen), surfaces.png
 // (each surface id a distinct colour) and intrinsics.json into dir (created if missing).
-// Throws InputError if dir cannot be written.
+// Throws OutputError if dir cannot be written.
 void WriteStereoView(const StereoView& view, const std::string& dir);
 
 }  // namespace fognav::scenarios

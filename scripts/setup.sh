@@ -7,6 +7,8 @@ cd "$(dirname "$0")/.."
 packages=(cmake g++ make libmujoco-dev libosmesa6-dev libeigen3-dev libopencv-dev
           libopencv-contrib-dev libgtest-dev libbenchmark-dev libyaml-cpp-dev
           nlohmann-json3-dev libcli11-dev python3)
+# the fuzzers' build (scripts/fuzz.sh) needs clang and its libFuzzer
+if [[ " $* " == *" -DFOGNAV_FUZZ=ON "* ]]; then packages+=(clang-14 libclang-rt-14-dev); fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,10 @@
 // fognav: the command-line program. Parses flags and calls scenarios/; exit codes as DESIGN.md:
-// 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure.
+// 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure;
+// and since: 4 a run interrupted by SIGINT or SIGTERM (its outputs written), 5 an output that
+// could not be written.
+#include <signal.h>
+
+#include <atomic>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -8,6 +13,7 @@
 
 #include "scenarios/clips.h"
 #include "scenarios/mission.h"
+#include "scenarios/output.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
@@ -19,9 +25,30 @@ constexpr int kExitOk = 0;
 constexpr int kExitExpectationFailed = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSimFailure = 3;
+constexpr int kExitInterrupted = 4;
+constexpr int kExitOutputError = 5;
 
 using fognav::scenarios::InputError;
+using fognav::scenarios::OutputError;
 using fognav::sim::SimError;
+
+// set by SIGINT and SIGTERM during a run; the mission reads it at the start of each cycle
+std::atomic<bool> stop_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+void RequestStop(int) { stop_requested = true; }
+
+// SIGINT and SIGTERM end the run after its cycle; a second one of the same kind ends the
+// process at once (SA_RESETHAND restores the default action). SA_RESTART: a write under way
+// goes on rather than failing as interrupted.
+void StopOnSignals() {
+  struct sigaction action = {};
+  action.sa_handler = RequestStop;
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
 
 int Validate(const std::string& path) {
   auto scenario = fognav::scenarios::LoadScenario(path);
@@ -75,7 +102,15 @@ int Run(const std::string& path, const std::string& out, const std::string& dept
   options.video_path = video;
   options.dump_every = dump_every;
   options.quiet = quiet;
+  options.stop = &stop_requested;
+  StopOnSignals();
   auto outcome = fognav::scenarios::RunMission(scenario, options);
+  if (outcome.failure == "interrupted") {
+    std::cerr << "fognav: interrupted; report.json, trajectory.csv, cycles.csv and maps/ up to "
+                 "the last cycle are in "
+              << out << "\n";
+    return kExitInterrupted;
+  }
   if (!quiet) {
     // "out/" and "out" name the same directory: print it without the trailing slash
     std::string dir = out;
@@ -167,11 +202,14 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::cerr << "fognav: " << e.what() << "\n";
     return kExitBadInput;
+  } catch (const OutputError& e) {
+    std::cerr << "fognav: output: " << e.what() << "\n";
+    return kExitOutputError;
   } catch (const SimError& e) {
     std::cerr << "fognav: simulator: " << e.what() << "\n";
     return kExitSimFailure;
   } catch (const std::exception& e) {
-    // anything else (an output file that cannot be written mid-run, ...) stops the run
+    // anything else stops the run
     std::cerr << "fognav: could not run: " << e.what() << "\n";
     return kExitSimFailure;
   }

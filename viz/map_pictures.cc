@@ -49,7 +49,7 @@ void Write(const std::string& path, const cv::Mat& img) {
   } catch (const cv::Exception&) {
     ok = false;
   }
-  if (!ok) throw std::runtime_error("cannot write picture " + path);
+  if (!ok) throw perception::OutputError(path + ": cannot write the picture");
 }
 
 uint8_t RosValue(CellType t) {
@@ -269,7 +269,7 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
                       const perception::MapParams& params, const perception::Pose2& robot_G) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw std::runtime_error("cannot create map directory " + dir + ": " + ec.message());
+  if (ec) throw perception::OutputError(dir + ": cannot create the folder: " + ec.message());
   const std::filesystem::path d(dir);
   WritePng(DrawFog(fog, robot_G), (d / "fog.png").string());
   WritePng(DrawFloorMap(state), (d / "floor.png").string());
@@ -308,7 +308,7 @@ void WriteMapPictures(const std::string& dir, const Fog& fog, const MapState& st
        << "fognav_heights: {image: fog_heights.png, value: \"1000 + height_mm\", "
           "unknown: 0}\n"
        << "robot: [" << robot_G.x << ", " << robot_G.y << ", " << robot_G.yaw << "]\n";
-  if (!yaml) throw std::runtime_error("cannot write map file " + yaml_path);
+  if (!yaml) throw perception::OutputError(yaml_path + ": cannot write the map file");
 }
 
 }  // namespace fognav::viz

@@ -176,7 +176,7 @@ std::string WindowMapFigures(const std::string& out_dir) {
 void WriteText(const std::string& path, const std::string& text) {
   std::ofstream out(path);
   out << text;
-  if (!out) throw std::runtime_error(path + ": cannot write");
+  if (!out) throw perception::OutputError(path + ": cannot write");
 }
 
 // distinct colours for the categories of a strip, in order of first appearance

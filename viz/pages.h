@@ -23,14 +23,15 @@ namespace fognav::viz {
 // the cycles (distance to the goal, the plan's length, the plan and the decision, the failure
 // cycle marked); for a failure the map at that cycle and the last decisions; the last frames;
 // the maps at the end; the video when video_path is not empty. Throws std::runtime_error naming
-// the file if one cannot be read or written.
+// a file that cannot be read, perception::OutputError one that cannot be written.
 void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_truth,
                       const navigation::PlanResult& optimal, const perception::Pose2& start_W,
                       const Eigen::Vector2d& goal_W, const std::string& video_path);
 
 // Writes out_dir/report.html for `fognav perceive`: the scores of perception.json as tables
 // (overall, FOG confusion, one row per view with its left, disparity and segment frames) and
-// the maps. Throws std::runtime_error naming the file if one cannot be read or written.
+// the maps. Throws std::runtime_error naming a file that cannot be read, perception::OutputError
+// one that cannot be written.
 void WritePerceivePage(const std::string& out_dir);
 
 }  // namespace fognav::viz

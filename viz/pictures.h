@@ -102,18 +102,18 @@ perception::RgbImage DrawMissionMap(const perception::Fog& floor_fog,
 
 // ---- files ----
 
-// Writes an RGB image as PNG. Throws std::runtime_error naming the path if it cannot.
+// Writes an RGB image as PNG. Throws perception::OutputError naming the path if it cannot.
 void WritePng(const perception::RgbImage& image, const std::string& path);
 // The types of `fog` as a map_server image (row 0 the highest y; grey values as in fog.yaml).
-// Throws std::runtime_error naming the file if it cannot be written.
+// Throws perception::OutputError naming the file if it cannot be written.
 void WriteFogTypes(const std::string& path, const perception::Fog& fog);
 // Writes into `dir` (created if needed): fog.png, floor.png, grid_side.png (pictures above);
 // fog_types.png + fog.yaml (ROS map_server: resolution, origin, trinary mode, and a
 // `fognav_types` legend of the grey value of each type: floor 254, stairs 190, tunnel 160,
 // unknown 205, border 40, obstacle 0 — so map_server reads floor free, border and obstacle
 // occupied, the rest unknown); fog_heights.png (16-bit, value = 1000 + height in millimetres,
-// clamped to [1, 65535], 0 where the height is -infinity). Throws std::runtime_error naming the
-// file if one cannot be written.
+// clamped to [1, 65535], 0 where the height is -infinity). Throws perception::OutputError naming
+// the file if one cannot be written.
 void WriteMapPictures(const std::string& dir, const perception::Fog& fog,
                       const perception::MapState& state, const perception::MapParams& params,
                       const perception::Pose2& robot_G);

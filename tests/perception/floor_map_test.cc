@@ -292,5 +292,16 @@ TEST(FloorMap, FadingTheGridKeepsTheLayersThatHoldFloorHeights) {
   EXPECT_NEAR(above, plain.ProbabilityAt({0.42, 0.02, 0.45}), 1e-6);
 }
 
+// A state never updated has no cells to fade (map_update_fuzz: FadeGrid read the floor heights
+// of the default window's 10000 cells from an empty vector)
+TEST(FloorMap, FadingAStateNeverUpdatedLeavesItEmpty) {
+  MapState state;
+  FadeGrid(MapParams(), 0.25, &state);
+  EXPECT_TRUE(state.log_odds.empty());
+  EXPECT_TRUE(state.floor.empty());
+  UpdateMaps(MapParams(), Frame(kAbove, Patch(0.0f, 0.0f)), &state);
+  EXPECT_NEAR(state.FloorAt(0.42, 0.02), 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace fognav::perception

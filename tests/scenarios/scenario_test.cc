@@ -168,11 +168,63 @@ INSTANTIATE_TEST_SUITE_P(
                  "course.yaml:2: expect.actions_used[1]: unknown action 'fly'"},
         BadInput{"name: unit", "name: unit\nexpect: {failure: fell}",
                  "course.yaml:2: expect.failure: unknown failure 'fell' (expected no_path, "
-                 "collision, off_floor, timeout or goal_not_reached)"},
+                 "collision, off_floor or timeout)"},
+        // a failure no mission ends with (a scenario that expected it could never pass)
+        BadInput{"name: unit", "name: unit\nexpect: {failure: goal_not_reached}",
+                 "course.yaml:2: expect.failure: unknown failure 'goal_not_reached'"},
         BadInput{"name: unit", "name: unit\nlimits: {max_cycles: 0}",
                  "course.yaml:2: limits.max_cycles: expected an integer from 1"},
         // not YAML at all
-        BadInput{"name: unit", "name: [unit", "course.yaml:"}));
+        BadInput{"name: unit", "name: [unit", "course.yaml:"},
+        // a list or a mapping as a key, at the top level or inside an object (yaml-cpp's
+        // conversion error escaped before, exit code 3)
+        BadInput{"name: unit", "[a, b]: 1\nname: unit",
+                 "course.yaml:1: expected a plain name as a key, got a list"},
+        BadInput{"floor: [6.0, 2.0]", "floor: [6.0, 2.0]\n  ? {x: 1}\n  : 1",
+                 "course.yaml:8: world: expected a plain name as a key, got a mapping"},
+        BadInput{"height: 0.56}", "height: 0.56, [leg]: 0.1}",
+                 "course.yaml:12: world.objects[2].table: expected a plain name as a key, got a "
+                 "list"}));
+
+// A document that is not a mapping is named with its line and what it is instead
+TEST(Scenario, TopLevelThatIsNotAMappingNamesItsLine) {
+  EXPECT_EQ(ErrorOf("- name: unit\n- robot: {}\n"),
+            "course.yaml:1: expected a mapping (name, robot, goal, world) at the top level, got a "
+            "list");
+  EXPECT_EQ(ErrorOf("# a number\n\n42\n"),
+            "course.yaml:3: expected a mapping (name, robot, goal, world) at the top level, got "
+            "'42'");
+  EXPECT_EQ(ErrorOf(""),
+            "course.yaml:1: expected a mapping (name, robot, goal, world) at the top level, got an "
+            "empty document");
+}
+
+TEST(Scenario, FolderIsNamedAsAFolder) {
+  try {
+    LoadScenario("scenarios");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "scenarios: is a folder, expected a scenario file");
+  }
+}
+
+// kMaxScenarioBytes is read and no more: an endless file stops there (/dev/zero grew to 2.1 GB
+// and ended in std::bad_alloc before)
+TEST(Scenario, SizeIsBoundedToOneMegabyte) {
+  const std::string too_large = "course.yaml: the scenario is larger than 1 MB (1048576 bytes)";
+  std::string padded = kValid;
+  padded += "#" + std::string(kMaxScenarioBytes - padded.size() - 2, 'x') + "\n";
+  ASSERT_EQ(padded.size(), kMaxScenarioBytes);
+  EXPECT_EQ(ParseScenario(padded, "course.yaml").name, "unit");
+  EXPECT_EQ(ErrorOf(padded + "\n").find(too_large), 0u) << ErrorOf(padded + "\n");
+  try {
+    LoadScenario("/dev/zero");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("/dev/zero: the scenario is larger than 1 MB"), 0u)
+        << e.what();
+  }
+}
 
 // where the robot may stand: over the floor rectangle, edges included (floor 6 x 2 at (2, 0))
 TEST(Scenario, OverFloorIsTheFloorRectangle) {

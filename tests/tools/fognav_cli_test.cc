@@ -1,10 +1,19 @@
 // Runs the fognav program and checks its exit codes and messages (DESIGN.md command line).
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <thread>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -126,11 +135,141 @@ TEST(FognavCli, MissingFileAndBadFlagsAreExitCode2) {
             std::string::npos) << o.output;
 }
 
-TEST(FognavCli, UnwritableOutputIsExitCode2) {
-  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /proc/fognav_out");
+// issue 51's defects: each was exit code 3 ("could not run") or a message without its line
+TEST(FognavCli, BadScenarioOfAnyKindIsExitCode2WithFileAndLine) {
+  const std::string key_list = TempFile("fognav_cli_key_list.yaml", "name: x\n[a, b]: 1\n");
+  Outcome o = RunFognav("validate " + key_list);
   EXPECT_EQ(o.exit_code, 2) << o.output;
-  EXPECT_NE(o.output.find("/proc/fognav_out"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output, "fognav: " + key_list + ":2: expected a plain name as a key, got a list\n");
+  const std::string top_list = TempFile("fognav_cli_top_list.yaml", "# a list\n- name: x\n");
+  o = RunFognav("validate " + top_list);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find(top_list + ":2: expected a mapping"), std::string::npos) << o.output;
+  o = RunFognav("validate scenarios");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: scenarios: is a folder, expected a scenario file\n");
+  o = RunFognav("validate /dev/zero");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("/dev/zero: the scenario is larger than 1 MB"), std::string::npos)
+      << o.output;
 }
+
+// An output folder that cannot be written is exit code 5 and names it: one that cannot be
+// created, and one that exists but takes no files (a read-only folder; /proc/self takes none
+// even for root, who may write into a read-only folder)
+TEST(FognavCli, UnwritableOutputIsExitCode5) {
+  Outcome o = RunFognav("render scenarios/stairs_and_table.yaml --out /proc/fognav_out");
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_NE(o.output.find("fognav: output: /proc/fognav_out"), std::string::npos) << o.output;
+  o = RunFognav("run scenarios/obstacles.yaml --quiet --out /proc/self");
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_NE(o.output.find("fognav: output: /proc/self/trajectory.csv: cannot write"),
+            std::string::npos) << o.output;
+  if (geteuid() != 0) {
+    const auto dir = std::filesystem::temp_directory_path() / "fognav_cli_read_only";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_read |
+                                          std::filesystem::perms::owner_exec);
+    o = RunFognav("run scenarios/obstacles.yaml --quiet --out " + dir.string());
+    EXPECT_EQ(o.exit_code, 5) << o.output;
+    EXPECT_NE(o.output.find(dir.string() + "/trajectory.csv: cannot write"), std::string::npos)
+        << o.output;
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_all);
+  }
+}
+
+// A full disk (a log pointed at /dev/full) ends the run with exit code 5, a message naming the
+// file and the reason, and no report.json: not even one an earlier run left there
+TEST(FognavCli, FullDiskIsExitCode5AndLeavesNoReport) {
+  const auto dir = std::filesystem::temp_directory_path() / "fognav_cli_full";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "report.json") << R"({"success": true})";
+  std::filesystem::create_symlink("/dev/full", dir / "cycles.csv");
+  Outcome o = RunFognav("run scenarios/obstacles.yaml --quiet --out " + dir.string());
+  EXPECT_EQ(o.exit_code, 5) << o.output;
+  EXPECT_EQ(o.output, "fognav: output: " + dir.string() +
+                          "/cycles.csv: cannot write: No space left on device\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "report.json"));
+}
+
+// Lines of a text file.
+std::vector<std::string> ReadLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// SIGINT (Ctrl-C) and SIGTERM end a running mission after its cycle with exit code 4, and it
+// keeps its data: report.json with failure "interrupted", trajectory.csv and cycles.csv up to
+// that cycle, the last maps and frames
+class Interrupted : public ::testing::TestWithParam<int> {};
+
+TEST_P(Interrupted, MissionWritesItsDataAndExitsWith4) {
+  const int signal = GetParam();
+  const std::string out = (std::filesystem::temp_directory_path() /
+                           ("fognav_cli_interrupted_" + std::to_string(signal)))
+                              .string();
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  const std::string log = out + "/../fognav_cli_interrupted_" + std::to_string(signal) + ".log";
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> args = {FOGNAV_BINARY, "run", "scenarios/stairs_and_table.yaml",
+                                   "--out", out, "--quiet"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, FOGNAV_BINARY, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+
+  // the signal once two cycles are logged (the log reaches the disk every cycle)
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (ReadLines(out + "/cycles.csv").size() < 3 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(kill(pid, signal), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  std::ifstream log_file(log);
+  const std::string output(std::istreambuf_iterator<char>(log_file), {});
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << output;
+  EXPECT_NE(output.find("fognav: interrupted; report.json, trajectory.csv, cycles.csv and maps/"),
+            std::string::npos) << output;
+
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/report.json"));
+  EXPECT_EQ(report["failure"], "interrupted");
+  EXPECT_FALSE(report["success"].get<bool>());
+  EXPECT_FALSE(report["reached_goal"].get<bool>());
+  // the mission stopped at the end of a cycle well short of the goal (the course takes 50-60)
+  const int cycles = report["cycles"].get<int>();
+  EXPECT_GE(cycles, 2);
+  EXPECT_LT(cycles, 40);
+  // a row per cycle up to the last, and a row per footstep taken
+  const auto cycle_rows = ReadLines(out + "/cycles.csv");
+  ASSERT_EQ(int(cycle_rows.size()), cycles + 1);
+  EXPECT_EQ(cycle_rows.back().substr(0, cycle_rows.back().find(',')), std::to_string(cycles));
+  const auto steps = ReadLines(out + "/trajectory.csv");
+  ASSERT_GE(steps.size(), 2u);
+  EXPECT_EQ(steps.back().substr(0, steps.back().find(',')),
+            std::to_string(report["steps"].get<int>()));
+  for (const char* file : {"maps/fog.png", "maps/fog_types.png", "maps/final_plan.png",
+                           "frames/final_left.png"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + file)) << file;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals, Interrupted, ::testing::Values(SIGINT, SIGTERM),
+                         [](const auto& info) {
+                           return std::string(info.param == SIGINT ? "SIGINT" : "SIGTERM");
+                         });
 
 TEST(FognavCli, NoOSMesaIsExitCode3) {
   // as on a machine without libOSMesa: the simulator cannot render

@@ -272,4 +272,44 @@ TEST(Mission, AFailedExpectationIsExitCode1) {
   EXPECT_EQ(report["actions"]["crawl"].get<int>(), 0);
 }
 
+// `expect: {reach_goal: false}` without a `failure` expects the mission to end short of the goal,
+// whatever it ends with (it was exit code 1 for every ending before: no mission could pass it);
+// a `failure` named must be the one. Missions of one cycle: the look-around and a first move.
+TEST(Mission, ReachGoalFalseAloneExpectsAnyEndShortOfTheGoal) {
+  std::ifstream in("scenarios/obstacles.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string original = text.str();
+  auto run = [&](const std::string& goal, const std::string& expect, nlohmann::json* report) {
+    std::string yaml = original;
+    const std::string goal_line = "goal: {position: [2.6, 0.0], tolerance: 0.2}";
+    yaml.replace(yaml.find(goal_line), goal_line.size(), "goal: " + goal);
+    const std::string tail = "limits: {max_cycles: 200, max_steps: 600}\n"
+                             "expect: {reach_goal: true, actions_used: [walk], no_collision: true}";
+    yaml.replace(yaml.find(tail), tail.size(), "limits: {max_cycles: 1}\nexpect: " + expect);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "fognav_expect_one_cycle.yaml").string();
+    std::ofstream(path) << yaml;
+    const std::string out = TempDir("expect_one_cycle");
+    std::string output;
+    const int code = RunMission(path, out, &output);
+    *report = ReadReport(out);
+    return code;
+  };
+  const std::string far = "{position: [2.6, 0.0], tolerance: 0.2}";
+  nlohmann::json report;
+  EXPECT_EQ(run(far, "{reach_goal: false}", &report), 0) << report.dump(2);
+  EXPECT_EQ(report["failure"], "timeout");
+  EXPECT_TRUE(report["success"].get<bool>());
+  EXPECT_EQ(run(far, "{reach_goal: false, failure: no_path}", &report), 1) << report.dump(2);
+  EXPECT_EQ(report["failure"], "timeout");
+  EXPECT_EQ(run(far, "{reach_goal: true}", &report), 1) << report.dump(2);
+  EXPECT_EQ(run(far, "{}", &report), 1) << report.dump(2);
+  // a goal within the tolerance of the start is reached at once
+  EXPECT_EQ(run("{position: [0.1, 0.0], tolerance: 0.2}", "{reach_goal: false}", &report), 1)
+      << report.dump(2);
+  EXPECT_TRUE(report["reached_goal"].get<bool>());
+  EXPECT_EQ(report["failure"], nullptr);
+}
+
 }  // namespace
