@@ -14,10 +14,35 @@
 #include <vector>
 
 #include "navigation/planner.h"
+#include "perception/localization.h"
+#include "perception/mapping.h"
+#include "perception/segmentation.h"
 #include "perception/step_edge.h"
-#include "scenarios/perception_cycle.h"
 
 namespace fognav::scenarios {
+
+// The maps of the loop: the paper's, but a cell counts as hit in a frame only if two points end
+// in it, so stray stereo matches make no obstacles, and a ray from less than half the range at
+// which a column's obstacle evidence was seen sets its cells free, so far phantoms do not stay.
+inline perception::MapParams MapDefaults() {
+  perception::MapParams p;
+  p.grid.min_hits_per_frame = 2;
+  p.grid.overrule_ratio = 2.0;
+  return p;
+}
+
+// The perception cycle: stereo, segmentation, labelled points, maps and localization. Why the
+// defaults differ from the paper's where they do: docs/params.md.
+struct PerceptionParams {
+  perception::StereoParams stereo;
+  perception::SegmentParams segment = perception::RayNoiseParams();            // stereo depth
+  perception::SegmentParams segment_ideal = perception::PreciseRangeParams();  // ideal depth
+  bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
+  perception::LabelParams label;
+  double rim_keep_height = 0.40;  // column-rim points this high above the robot's floor count
+  perception::MapParams map = MapDefaults();
+  perception::LocalizationParams localization;
+};
 
 // The mission's behaviour: how far a motion command goes before the robot re-plans, and when it
 // looks, explores, inspects, peeks and gives up. Why each value is what it is: docs/params.md.
