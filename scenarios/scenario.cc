@@ -566,6 +566,12 @@ std::string Summary(const Scenario& s) {
   if (s.sensor.pixel_samples > 1) {
     out << ", " << s.sensor.pixel_samples << "x" << s.sensor.pixel_samples << " samples per pixel";
   }
+  if (!s.params.empty()) {
+    out << ", params";
+    for (const auto& [name, value] : s.params) {
+      out << " " << name << "=" << FormatParamValue(*FindParam(name), value);
+    }
+  }
   return out.str();
 }
 

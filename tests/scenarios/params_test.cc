@@ -146,6 +146,12 @@ TEST(Params, ScenarioReadsEverySectionAndType) {
                                       {"grid.size_z", 20},
                                       {"label.max_range", INFINITY},
                                       {"mission.max_explorations", 6}}));
+  // `fognav validate` says what they are
+  EXPECT_NE(
+      Summary(s).find(", params grid.size_z=20 label.max_range=inf mission.max_explorations=6 "
+                      "planner.blind_moves_stay_known=false planner.sidestep_factor=1.4"),
+      std::string::npos)
+      << Summary(s);
   // no params: none
   EXPECT_TRUE(ParseScenario(kScenario, "unit.yaml").params.empty());
 }
