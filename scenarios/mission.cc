@@ -22,6 +22,7 @@
 #include "navigation/planner.h"
 #include "perception/step_edge.h"
 #include "scenarios/output.h"
+#include "scenarios/params.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/video.h"
 #include "sim/controller.h"
@@ -48,117 +49,6 @@ Eigen::Vector3d Relative(const perception::Pose2& from, const perception::Pose2&
 }
 
 perception::Pose2 ToPerception(const sim::Pose2& p) { return {p.x, p.y, p.yaw}; }
-
-// how far one motion command may carry the robot before it re-plans (about two strides)
-struct ExecutionLimits {
-  double walk = 0.16;
-  double sidestep = 0.10;
-  double crawl = 0.12;
-  // without a path to the goal, the robot approaches it if that gains at least this much
-  double min_approach = 0.1;
-  // without a path even after looking around, the robot weakens what its 3D grid holds to this
-  // share of its log-odds and looks around once more from where it stands (views from poses
-  // that odometry noise misplaced may have closed a narrow way; fresh views now outvote them,
-  // while what lies beside the feet, too near for the eyes, stays), unless it did so within
-  // fresh_look_distance (metres). On 37 noisy and shifted courses, keeping 0.5 or 0.25 met 35
-  // expectations (one failure a collision, one a no_path), dropping the maps also 35 but with
-  // two collisions (what lay beside the robot in a gap was forgotten), keeping 0.1 met 34.
-  // The layers that hold floor heights keep theirs (perception::FadeGrid).
-  double fresh_look_keep = 0.5;
-  double fresh_look_distance = 0.5;
-  double explore_beyond = 1.0;  // metres past the window's edge (see explore_to)
-  // the robot explores at most this often in a mission: the window forgets what it leaves, so
-  // where noise closed the way to the goal the robot would go back and forth until it timed out
-  int max_explorations = 4;
-  int explore_patience = 5;  // cycles
-  // Still without a way, the robot plans as if the obstacle and tunnel cells, and the rims of
-  // raised tops, whose obstacle evidence was seen only from farther than inspect_range
-  // (MapState::obstacle_range) were unknown: stereo errors grow with the square of the range,
-  // and a phantom seen from afar can close a door. If the real map stops that plan, the robot
-  // goes (exploring, at most max_explorations times in all) to within inspect_reach of the last
-  // pose before the stop, where near views overrule the far evidence
-  // (OccupancyParams::overrule_ratio) or confirm it. It looks around as soon as it comes within
-  // that reach (of a peek's pose too, below), whether or not the map holds a way on by then:
-  // following a way that had opened elsewhere instead, its eyes on the wall beside it after a
-  // side-step, it never looked along the passage it had come to (tables_by_the_wall_shifted).
-  // When that finds no way, the same with inspect_near_range: at 1.5 m a 1-pixel error of a
-  // partition's end beside a failed match puts a phantom 0.2 m into a door, at 1 m 0.1 m (7 of
-  // 8 doorways shifted by 1-3 cm went through with it, none without; 131 runs lost none).
-  // Or it goes (as above) to look into the unseen cells a side-step or backward step of a way
-  // needs (PeekPose), where that is the cheaper way to go: a gap only a side-step passes stays
-  // closed while the floor behind it is hidden. It goes to within peek_reach of that pose: a
-  // few centimetres aside, a wall's end hides the floor behind the gap. With no obstacle
-  // evidence to inspect and no such way, it plans as if the unseen cells were open floor and
-  // looks where the real map stops that way: unseen cells beside a top above the hands count
-  // as that top for the body (PlannerParams::hidden_reach), so a passage hidden behind a table
-  // top or between two dividers stayed closed however the robot stepped. Not while there is
-  // evidence to inspect: the open map's ways lead through every unseen corner, beyond walls
-  // too, and took the explorations that inspecting tables' rims needed (tables_by_the_wall).
-  double inspect_range = 1.5;
-  double inspect_near_range = 1.0;
-  double inspect_reach = 0.25;
-  double peek_reach = 0.05;
-  // There, after looking around, the eyes look at the floor this far beyond the pose the blind
-  // move goes to, panned as far as the neck turns (1.6 rad): the sweep pans to 1.2 rad, and a
-  // side-step's floor lies 1.57 rad aside, more where the robot came to the pose with another
-  // heading. Not nearer: looking 0.1-0.4 m beyond, steeply down and that far aside, the view
-  // met the robot's own arm, and the floor behind a 0.26 m gap stayed unseen (densec_003).
-  double peek_lead = 0.5;
-  // a robot whose last thrash_cycles positions all lie within thrash_radius of the first of
-  // them, on plans that do not reach the goal, and that got no nearer to the goal than before
-  // them (min_approach), goes back and forth (plans toward a goal beyond the window change as
-  // the window moves with it): once, it looks again and needs a way nearer than it has been;
-  // twice, it has no way (no_path, no_progress) instead of walking until it times out
-  int thrash_cycles = 20;
-  double thrash_radius = 0.6;
-  // A robot on plans that reach the goal that comes to the same pose by moving this many
-  // times among the last thrash_cycles poses it came to, no nearer to the goal than the first
-  // time, looks around: the views from two poses turn the map each way in turn, and each plan
-  // takes it back to the other pose (it turned to and fro in place until it timed out; after
-  // the look, the map held one way). Three times came about in missions that got through
-  // anyway, and the look changed them (a sole on a block under odometry noise, a no_path).
-  int circling_arrivals = 5;
-  // crawling beyond this heading uncertainty (1 sigma), the robot looks to both sides
-  double lost_yaw = 2.0 * M_PI / 180;
-  double side_look_pan = 0.8;  // rad
-  // A ceiling at least this high above the floor (Fog::ceiling; the standing eyes are at
-  // 0.47-0.51 m) within high_ceiling_range of the robot is one that the standing eyes see only
-  // edge-on or from below, and the cycle's views, which look down, not at all.
-  double high_ceiling = 0.46;
-  double high_ceiling_range = 1.0;
-  // Before getting down to crawl under such a ceiling, the standing eyes look up this far above
-  // the horizon (rad) toward the crawl (the plan's pose look_ahead on) and side_look_pan to
-  // each side. An underside a few centimetres above the eyes (the course's table top) is seen
-  // only so: the views while crawling reach 0.3 rad above the horizon at most (the neck's
-  // limit in the crawl posture), and without it the map held the floor under the top as open
-  // behind its front edge.
-  double underside_elevation = 0.15;
-  double look_ahead = 0.5;
-  // Standing near such a ceiling, every other cycle's view looks level toward the plan's pose
-  // look_ahead on: the edges of a table top at the height of the eyes show only in such views,
-  // and the robot walked under a top whose far edges it had never seen (head collisions). Not
-  // while the plan's poses within look_ahead lie on unknown cells: a level view sees the floor
-  // only from 1.5 m on, and the robot walked into a 9 cm block it had not looked at.
-  bool level_views = true;
-  // the robot keeps to its plan while the rest of it costs at most this much more than a new
-  // plan (metres-equivalent, and as a share of the new plan's cost, whichever is more), so two
-  // nearly equal ways round an obstacle, or a goal at the map window's edge, do not take turns
-  double keep_plan_margin = 0.25;
-  double keep_plan_share = 0.05;
-  // The stair-climbing module (perception/step_edge.h): the edges of the steps up or down on
-  // the plan within edge_lookahead (path length) are measured from each cycle's view while at
-  // least edge_min_range away (nearer, the robot's own body hides them), and with a look of its
-  // own at the next one within edge_look_range. The step then lands the heel heel_margin past
-  // the edge (half a cell, so that the next plan's snap to a cell centre keeps it past), the walk
-  // up to a riser stops the toes toe_margin short of it, each at most edge_correction from where
-  // the plan's cells put them.
-  double edge_lookahead = 0.8;
-  double edge_min_range = 0.2;
-  double edge_look_range = 0.45;
-  double heel_margin = 0.02;
-  double toe_margin = 0.01;
-  double edge_correction = 0.04;
-};
 
 // The measured edge of a step ahead (grid frame): a point on it, the heading it was measured
 // along, and the two levels.
@@ -519,11 +409,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   }
 
   // world, robot, renderer
-  const PerceptionParams perception_params;
-  nav::PlannerParams planner_params;
+  const RunParams run_params = ResolveParams(scenario.params);
+  const PerceptionParams& perception_params = run_params.perception;
+  nav::PlannerParams planner_params = run_params.planner;
   // plan to within half the tolerance, so the robot ends inside it despite odometry and cells
   planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
-  const ExecutionLimits limits;
+  const ExecutionLimits& limits = run_params.mission;
   sim::World world(MakeWorldSpec(scenario));
   const mjModel* m = world.model();
   mjData* d = world.data();
@@ -714,7 +605,7 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   perception::Fog fog;
   // the edges of the next steps up or down on the plan, measured from the views
   std::vector<StepEdge> edges;
-  const perception::StepEdgeParams edge_params;
+  const perception::StepEdgeParams& edge_params = run_params.step_edge;
   const double h_floor = planner_params.h_floor;
   // a step's edge lies within the longest step (plus the walk closer) of the pose before it
   const double step_reach = controller_params.limits.max_climb_forward + limits.edge_correction;
@@ -1422,7 +1313,8 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
       {"final_pose", {{"true", {truth_pose.x, truth_pose.y, truth_pose.yaw}},
                       {"odometry", {believed.x, believed.y, believed.yaw}}}},
       {"wall_time_s", Ms(wall_start) / 1000},
-      {"timing_ms", timing_ms}};
+      {"timing_ms", timing_ms},
+      {"params", ParamsJson(run_params)}};
   MissionOutcome outcome;
   outcome.success = success;
   outcome.reached_goal = reached_goal;

@@ -9,6 +9,7 @@
 
 #include "navigation/planner.h"
 #include "scenarios/output.h"
+#include "scenarios/params.h"
 #include "sim/controller.h"
 #include "viz/pages.h"
 #include "viz/pictures.h"
@@ -234,7 +235,9 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   WritePng(viz::DrawFogErrors(fog, truth, params.map.fog, robot_G), out_dir + "/maps/fog_errors.png");
   viz::WriteFogTypes(out_dir + "/maps/fog_truth_types.png", truth);
   // what the planner makes of the perceived map: the plan a mission would start with
-  navigation::PlannerParams planner_params;
+  RunParams run_params = ResolveParams(scenario.params);
+  run_params.perception = params;
+  navigation::PlannerParams planner_params = run_params.planner;
   planner_params.goal_tolerance = 0.5 * scenario.goal_tolerance;
   planner_params.kneel_offset = controller.KneelOffset();
   const navigation::PlanResult plan =
@@ -280,7 +283,8 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
       {"timing_ms",
        {{"stereo", perception::Median(stereo_ms)},
         {"segmentation", perception::Median(segmentation_ms)},
-        {"mapping", perception::Median(mapping_ms)}}}};
+        {"mapping", perception::Median(mapping_ms)}}},
+      {"params", ParamsJson(run_params)}};
   std::string text = report.dump(2);
   WriteFileAtomically(out_dir + "/perception.json", text + "\n");
   viz::WritePerceivePage(out_dir);

@@ -12,41 +12,13 @@
 #include "perception/localization.h"
 #include "perception/mapping.h"
 #include "perception/segmentation.h"
+#include "scenarios/params.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
 #include "sim/controller.h"
 #include "sim/humanoid.h"
 
 namespace fognav::scenarios {
-
-// The maps of the loop: the paper's, but a cell counts as hit in a frame only if two points end
-// in it (OccupancyParams::min_hits_per_frame), so stray stereo matches make no obstacles, and
-// a ray from less than half the range at which a column's obstacle evidence was seen sets its
-// cells free (OccupancyParams::overrule_ratio), so phantoms seen from afar do not stay.
-inline perception::MapParams MapDefaults() {
-  perception::MapParams p;
-  p.grid.min_hits_per_frame = 2;
-  p.grid.overrule_ratio = 2.0;
-  return p;
-}
-
-struct PerceptionParams {
-  perception::StereoParams stereo;
-  // for stereo depth: Table 1 (C_max 15) with the extensions for noise along the rays
-  // (RayNoiseParams): on the course's start views accuracy 0.83 against 0.61 with Table 1
-  // alone, which merges treads 3 cm apart with the floor into planes of a height between
-  // (the robot then stands on a floor 1.8 cm high in the map and finds no way on)
-  perception::SegmentParams segment = perception::RayNoiseParams();
-  perception::SegmentParams segment_ideal = perception::PreciseRangeParams();  // C_max 10
-  bool subsample = false;  // segment a 2x sub-sampled image (88x72 from 176x144) as on QRIO
-  perception::LabelParams label;
-  // stereo: points on column rims this high above the floor under the robot still count
-  // (LabelParams::keep_column_rims_above); the planner keeps the standing head off anything
-  // higher than 0.40 m (PlannerParams::head_low)
-  double rim_keep_height = 0.40;
-  perception::MapParams map = MapDefaults();
-  perception::LocalizationParams localization;
-};
 
 // What one view gave, for frames and reports.
 struct ViewResult {

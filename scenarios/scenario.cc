@@ -9,6 +9,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "scenarios/params.h"
 #include "sim/world.h"
 
 namespace fognav::scenarios {
@@ -272,6 +273,41 @@ const std::vector<std::string>& FailureNames() {
 
 namespace {
 
+// `params: {section: {key: value}}`, each checked against the parameter table
+void ReadParams(const Reader& r, const YAML::Node& params, std::map<std::string, double>* out) {
+  const std::vector<std::string> sections = ParamSections();
+  r.Map(params, "params", {sections.begin(), sections.end()});
+  for (const auto& entry : params) {
+    const std::string prefix = entry.first.Scalar() + ".";
+    const YAML::Node section = entry.second;
+    std::set<std::string> keys;
+    for (const ParamInfo& info : ParamTable()) {
+      if (info.name.compare(0, prefix.size(), prefix) == 0) {
+        keys.insert(info.name.substr(prefix.size()));
+      }
+    }
+    r.Map(section, "params." + entry.first.Scalar(), keys);
+    for (const auto& item : section) {
+      const std::string name = prefix + item.first.Scalar();
+      const YAML::Node value = item.second;
+      const ParamInfo& info = *FindParam(name);
+      // a quoted scalar is a string, whatever it spells
+      if (!value.IsScalar() || value.Tag() == "!") {
+        const std::string got =
+            value.IsScalar() ? "the string \"" + value.Scalar() + "\"" : Reader::Kind(value);
+        const char* expected = info.type == ParamType::kBool  ? "expected true or false"
+                               : info.type == ParamType::kInt ? "expected an integer"
+                                                              : "expected a number";
+        r.Fail(value, "params." + name, std::string(expected) + ", got " + got);
+      }
+      double parsed = 0;
+      const std::string wrong = ParseParamValue(info, value.Scalar(), &parsed);
+      if (!wrong.empty()) r.Fail(value, "params." + name, wrong);
+      (*out)[name] = parsed;
+    }
+  }
+}
+
 Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& source) {
   if (!root.IsMap()) {
     // an empty file has no mark: its first line is meant
@@ -282,7 +318,7 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
   }
   r.Map(root, "",
         {"name", "description", "seed", "robot", "goal", "world", "sensor", "odometry_noise",
-         "limits", "expect"},
+         "limits", "expect", "params"},
         {"name", "robot", "goal", "world"});
 
   Scenario s;
@@ -422,6 +458,8 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
     }
   }
 
+  if (const YAML::Node params = root["params"]) ReadParams(r, params, &s.params);
+
   Validate(r, root, s);
   return s;
 }
@@ -527,6 +565,12 @@ std::string Summary(const Scenario& s) {
       << (s.sensor.depth == DepthMode::kStereo ? "stereo" : "ideal");
   if (s.sensor.pixel_samples > 1) {
     out << ", " << s.sensor.pixel_samples << "x" << s.sensor.pixel_samples << " samples per pixel";
+  }
+  if (!s.params.empty()) {
+    out << ", params";
+    for (const auto& [name, value] : s.params) {
+      out << " " << name << "=" << FormatParamValue(*FindParam(name), value);
+    }
   }
   return out.str();
 }

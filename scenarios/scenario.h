@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -104,6 +105,9 @@ struct Scenario {
   int max_cycles = 600;
   int max_steps = 2000;
   Expectations expect;
+  // values of the `params:` key by dotted name ("planner.sidestep_factor"), checked against
+  // the table of scenarios/params.h; `--set` adds to them
+  std::map<std::string, double> params;
 };
 
 // Action names a scenario may list in expect.actions_used.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets of tests/fuzz/ with clang, AddressSanitizer and UBSan
 # (build-fuzz/), then runs each for SECONDS (default 60) from its seed corpus: the shipped
-# scenarios for the loader, inputs made from the perception tests' analytic scenes for the rest.
+# scenarios and tests/fuzz/scenario_seeds/ for the loader, inputs made from the perception
+# tests' analytic scenes for the rest.
 # A finding (crash, sanitizer report, uncaught exception, leak, timeout) fails the run; its input
 # is saved in build-fuzz/findings/ and printed in base64. What the fuzzers found new stays in
 # build-fuzz/corpus/, so a later run goes on from there.
@@ -19,7 +20,7 @@ out=build-fuzz
 rm -rf "$out/seeds"
 "$out/bin/make_seeds" "$out/seeds" > /dev/null
 mkdir -p "$out/seeds/scenario" "$out/findings"
-cp scenarios/*.yaml "$out/seeds/scenario/"
+cp scenarios/*.yaml tests/fuzz/scenario_seeds/*.yaml "$out/seeds/scenario/"
 
 failed=()
 for name in "${fuzzers[@]}"; do

@@ -8,12 +8,14 @@
 #include <cstdio>
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "scenarios/clips.h"
 #include "scenarios/mission.h"
 #include "scenarios/output.h"
+#include "scenarios/params.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
 #include "scenarios/views.h"
@@ -71,23 +73,29 @@ int Render(const std::string& path, const std::string& out) {
   return kExitOk;
 }
 
-// Loads the scenario; --depth, when given, replaces its sensor's depth mode.
-fognav::scenarios::Scenario LoadWithDepth(const std::string& path, const std::string& depth) {
+// Loads the scenario; each --set overrides a parameter after the file's `params:`, --depth,
+// when given, replaces its sensor's depth mode.
+fognav::scenarios::Scenario LoadWithDepth(const std::string& path, const std::string& depth,
+                                          const std::vector<std::string>& sets) {
   auto scenario = fognav::scenarios::LoadScenario(path);
+  for (const std::string& set : sets) fognav::scenarios::ApplySetFlag(set, &scenario.params);
   if (depth == "ideal") scenario.sensor.depth = fognav::scenarios::DepthMode::kIdeal;
   if (depth == "stereo") scenario.sensor.depth = fognav::scenarios::DepthMode::kStereo;
   return scenario;
 }
 
 int Perceive(const std::string& path, const std::string& out, const std::string& depth,
-             bool quiet) {
+             const std::vector<std::string>& sets, bool quiet) {
   if (depth == "both") {
-    fognav::scenarios::RunPerceiveBoth(fognav::scenarios::LoadScenario(path), out, quiet);
+    auto scenario = LoadWithDepth(path, "", sets);
+    fognav::scenarios::RunPerceiveBoth(
+        scenario, out, quiet, fognav::scenarios::ResolveParams(scenario.params).perception);
     if (!quiet) std::cout << "wrote perception.json, stereo/ and ideal/ to " << out << "\n";
     return kExitOk;
   }
-  auto scenario = LoadWithDepth(path, depth);
-  fognav::scenarios::RunPerceive(scenario, out, quiet);
+  auto scenario = LoadWithDepth(path, depth, sets);
+  fognav::scenarios::RunPerceive(scenario, out, quiet,
+                                 fognav::scenarios::ResolveParams(scenario.params).perception);
   if (!quiet) {
     std::cout << "wrote report.html, perception.json, frames/ and maps/ to " << out << "\n";
   }
@@ -95,8 +103,9 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
 }
 
 int Run(const std::string& path, const std::string& out, const std::string& depth,
-        int dump_every, const std::string& video, bool quiet) {
-  auto scenario = LoadWithDepth(path, depth);
+        const std::vector<std::string>& sets, int dump_every, const std::string& video,
+        bool quiet) {
+  auto scenario = LoadWithDepth(path, depth, sets);
   fognav::scenarios::MissionOptions options;
   options.out_dir = out;
   options.video_path = video;
@@ -151,6 +160,9 @@ int main(int argc, char** argv) {
   render->add_option("--out", out_dir, "output directory")->required();
 
   std::string depth, video;
+  std::vector<std::string> sets;
+  const char* set_help = "override a parameter, section.key=value (repeatable; wins over the "
+                         "scenario's params; `fognav params` lists them)";
   bool quiet = false;
   int dump_every = 0;
   auto* run = app.add_subcommand("run", "run a mission headless");
@@ -163,6 +175,7 @@ int main(int argc, char** argv) {
   run->add_option("--video", video,
                   "write the mission as a video, FILE.avi, FILE.mp4 or FILE.webm (chase camera, "
                   "head camera, FOG with the plan; twice real time; report.html plays .webm)");
+  run->add_option("--set", sets, set_help)->allow_extra_args(false);
   run->add_flag("--quiet", quiet, "print nothing but errors");
 
   auto* perceive = app.add_subcommand(
@@ -172,7 +185,12 @@ int main(int argc, char** argv) {
   perceive->add_option("--depth", depth,
                        "range data: stereo, ideal, or both side by side (default: the scenario's)")
       ->check(CLI::IsMember({"stereo", "ideal", "both"}));
+  perceive->add_option("--set", sets, set_help)->allow_extra_args(false);
   perceive->add_flag("--quiet", quiet, "print nothing but errors");
+
+  auto* params = app.add_subcommand(
+      "params", "list every parameter a scenario's params: or --set may change: name, type, "
+                "default, range, meaning");
 
   std::string motion;
   int every = 5;
@@ -195,9 +213,13 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return Validate(scenario_path);
-    if (*run) return Run(scenario_path, out_dir, depth, dump_every, video, quiet);
+    if (*run) return Run(scenario_path, out_dir, depth, sets, dump_every, video, quiet);
     if (*render) return Render(scenario_path, out_dir);
-    if (*perceive) return Perceive(scenario_path, out_dir, depth, quiet);
+    if (*perceive) return Perceive(scenario_path, out_dir, depth, sets, quiet);
+    if (*params) {
+      fognav::scenarios::PrintParamTable(std::cout);
+      return kExitOk;
+    }
     if (*clip) return Clip(motion, out_dir, every, quiet);
   } catch (const InputError& e) {
     std::cerr << "fognav: " << e.what() << "\n";

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "scenarios/params.h"
 #include "scenarios/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
@@ -14,6 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // what the program does next with a loaded scenario, short of the simulator
     fognav::scenarios::WorldSolids(scenario);
     fognav::scenarios::Summary(scenario);
+    fognav::scenarios::ParamsJson(fognav::scenarios::ResolveParams(scenario.params));
   } catch (const fognav::scenarios::InputError&) {
   }
   return 0;

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -152,6 +153,102 @@ TEST(FognavCli, BadScenarioOfAnyKindIsExitCode2WithFileAndLine) {
   EXPECT_EQ(o.exit_code, 2) << o.output;
   EXPECT_NE(o.output.find("/dev/zero: the scenario is larger than 1 MB"), std::string::npos)
       << o.output;
+}
+
+// --set (run and perceive): a bad one names the flag, the key and what is wrong, exit code 2,
+// before anything runs; so does a scenario whose params: the table does not know
+TEST(FognavCli, BadSetOrParamsIsExitCode2) {
+  Outcome o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_set --set "
+                        "planner.sidestep_factor=fast");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: --set planner.sidestep_factor=fast: planner.sidestep_factor: "
+                      "expected a number, got 'fast'\n");
+  o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_set --set planner.speed=2");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_NE(o.output.find("fognav: --set planner.speed=2: planner.speed: unknown parameter"),
+            std::string::npos) << o.output;
+  o = RunFognav("perceive scenarios/obstacles.yaml --out /tmp/fognav_cli_set --set "
+                "grid.size_z=65");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: --set grid.size_z=65: grid.size_z: expected an integer from 4 "
+                      "to 64, got '65'\n");
+  o = RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_set --set sidestep");
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: --set sidestep: expected section.key=value\n");
+  EXPECT_EQ(RunFognav("run scenarios/obstacles.yaml --out /tmp/fognav_cli_set --set").exit_code,
+            2);
+  const std::string path = TempFile("fognav_cli_params.yaml",
+                                    "name: bad\nrobot: {start: [0, 0, 0]}\n"
+                                    "goal: {position: [1, 0]}\nworld: {floor: [4, 2]}\n"
+                                    "params:\n  mission: {max_explorations: many}\n");
+  o = RunFognav("validate " + path);
+  EXPECT_EQ(o.exit_code, 2) << o.output;
+  EXPECT_EQ(o.output, "fognav: " + path +
+                          ":6: params.mission.max_explorations: expected an integer, got "
+                          "'many'\n");
+}
+
+// `fognav params` lists every parameter with its default
+TEST(FognavCli, ParamsListsTheTable) {
+  Outcome o = RunFognav("params");
+  EXPECT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("\nplanner.sidestep_factor\tnumber\t1.6\t0..100\t"),
+            std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("\nmission.max_explorations\tinteger\t4\t"), std::string::npos);
+  EXPECT_GE(std::count(o.output.begin(), o.output.end(), '\n'), 200);
+}
+
+// report.json and perception.json list the parameters that differ from the defaults: the
+// file's, with --set winning over it
+TEST(FognavCli, ReportsListTheChangedParameters) {
+  const std::string path = TempFile("fognav_cli_params_ok.yaml",
+                                    "name: params\nrobot: {start: [0, 0, 0]}\n"
+                                    "goal: {position: [1, 0]}\nworld: {floor: [3, 2]}\n"
+                                    "limits: {max_cycles: 1}\nsensor: {depth: ideal}\n"
+                                    "params:\n"
+                                    "  planner: {walk_factor: 1.1, sidestep_factor: 1.6}\n"
+                                    "  fog: {infer_tops: false}\n");
+  const std::string out = (std::filesystem::temp_directory_path() / "fognav_cli_params").string();
+  std::filesystem::remove_all(out);
+  Outcome o = RunFognav("run " + path + " --out " + out +
+                        "/run --quiet --set planner.walk_factor=1.2 --set "
+                        "mission.max_explorations=2");
+  ASSERT_TRUE(o.exit_code == 0 || o.exit_code == 1) << o.output;
+  const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/run/report.json"));
+  EXPECT_EQ(report["params"], nlohmann::json::parse(R"({"planner.walk_factor": 1.2,
+      "fog.infer_tops": false, "mission.max_explorations": 2})"));
+  o = RunFognav("perceive " + path + " --out " + out + "/perceive --quiet --set grid.p_occ=0.7");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const nlohmann::json perception =
+      nlohmann::json::parse(std::ifstream(out + "/perceive/perception.json"));
+  EXPECT_EQ(perception["params"], nlohmann::json::parse(R"({"planner.walk_factor": 1.1,
+      "fog.infer_tops": false, "grid.p_occ": 0.7})"));
+  // no overrides: an empty object
+  o = RunFognav("perceive scenarios/obstacles.yaml --out " + out + "/plain --quiet --depth ideal");
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(nlohmann::json::parse(std::ifstream(out + "/plain/perception.json"))["params"],
+            nlohmann::json::object());
+}
+
+// a --set reaches the mission: with motion commands of 4 cm instead of 16 cm the robot comes
+// less far in the same two cycles on open floor
+TEST(FognavCli, SetChangesWhatTheMissionDoes) {
+  const std::string path = TempFile("fognav_cli_set_walk.yaml",
+                                    "name: walk\nrobot: {start: [0, 0, 0]}\n"
+                                    "goal: {position: [2, 0]}\nworld: {floor: [5, 2]}\n"
+                                    "limits: {max_cycles: 2}\nsensor: {depth: ideal}\n");
+  const std::string out = (std::filesystem::temp_directory_path() / "fognav_cli_set_walk").string();
+  auto distance = [&](const std::string& flags) {
+    std::filesystem::remove_all(out);
+    Outcome o = RunFognav("run " + path + " --out " + out + " --quiet" + flags);
+    EXPECT_EQ(o.exit_code, 1) << o.output;  // a timeout: it has not reached the goal
+    const nlohmann::json report = nlohmann::json::parse(std::ifstream(out + "/report.json"));
+    return report["final_pose"]["true"][0].get<double>();
+  };
+  const double usual = distance("");
+  const double short_walks = distance(" --set mission.walk=0.04");
+  EXPECT_GT(usual, 0.2);
+  EXPECT_LT(short_walks, usual - 0.1);
 }
 
 // An output folder that cannot be written is exit code 5 and names it: one that cannot be
