@@ -112,8 +112,11 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   int last_slot = kNoSlotYet;  // the vote slot of (last_ix, last_iy, last_h)
   for (const LabelledPoint& lp : input.points) {
     if (!std::isfinite(lp.h) || !lp.p_G.allFinite()) continue;
-    const int ix = FastFloor(lp.p_G.x() * inv_res) - s.window.origin_ix;
-    const int iy = FastFloor(lp.p_G.y() * inv_res) - s.window.origin_iy;
+    // a point too far for an int cell index lies outside any window
+    const float gx = lp.p_G.x() * inv_res, gy = lp.p_G.y() * inv_res;
+    if (!(std::abs(gx) < 1e9f && std::abs(gy) < 1e9f)) continue;
+    const int ix = FastFloor(gx) - s.window.origin_ix;
+    const int iy = FastFloor(gy) - s.window.origin_iy;
     if (!s.window.Contains(ix, iy)) continue;
     // neighbouring pixels mostly share the cell and the plane: reuse the last check
     if (ix != last_ix || iy != last_iy || lp.h != last_h) {

@@ -137,6 +137,8 @@ void UpdateOccupancy(const OccupancyParams& params, double floor_tolerance, cons
     if (!ClipToBox(a, d, n_box, &t0, &t1)) continue;
     const Eigen::Vector3f s0 = a + t0 * d;
     const Eigen::Vector3f e0 = end_inside ? b : Eigen::Vector3f(a + t1 * d);
+    // a ray too short or too long for floats to clip (a point at the camera) traces nothing
+    if (!s0.allFinite() || !e0.allFinite()) continue;
     const int ez = std::clamp(FastFloor(e0.z()), 0, nz - 1);
     if (!end_inside && params.one_ray_per_end_cell) {
       // rays leaving the grid: one per exit cell

@@ -186,7 +186,7 @@ Image<uint8_t> DepthEdgeRims(const Image<float>& disparity_px, const StereoParam
   // pixels count as near.
   const int w = disparity_px.width, h = disparity_px.height, m = p.edge_margin;
   Image<uint8_t> rims(w, h, 0);
-  if (m <= 0) return rims;
+  if (m <= 0 || w == 0 || h == 0) return rims;
   const float jump = float(p.edge_jump);
   constexpr float kNear = std::numeric_limits<float>::infinity();
   std::vector<float> from_left(static_cast<size_t>(w));

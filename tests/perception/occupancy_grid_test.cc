@@ -121,6 +121,18 @@ TEST(OccupancyGrid, NanPointsDoNothing) {
   for (float l : state.log_odds) ASSERT_EQ(l, 0.0f);
 }
 
+TEST(OccupancyGrid, PointsTooFarForFloatsDoNothing) {
+  // the largest float, in grid cells, overflows to infinity: no ray, no floor, no cell index
+  MapParams params;
+  MapState state;
+  const float big = std::numeric_limits<float>::max();
+  MapInput in = Frame({}, {0.01, 0.02, 0.32}, {{big, 0.0f, 0.3f}, {0.0f, -big, 0.0f}});
+  for (LabelledPoint& p : in.points) p.h = 0.0f;  // floor points, for the floor map too
+  UpdateMaps(params, in, &state);
+  for (float l : state.log_odds) ASSERT_EQ(l, 0.0f);
+  for (float f : state.floor) ASSERT_EQ(f, kNegInf);
+}
+
 TEST(OccupancyGrid, RaysAreClippedToTheGrid) {
   MapParams params;
   MapState state;

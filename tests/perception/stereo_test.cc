@@ -354,5 +354,12 @@ TEST(Subsample2x, TakesEverySecondPixel) {
   EXPECT_NEAR(K.fx, SceneIntrinsics(176, 144).fx / 2, 1e-12);
 }
 
+TEST(DepthEdgeRims, AnImageWithoutColumnsHasNoRims) {
+  const Image<uint8_t> rims = DepthEdgeRims(Image<float>(0, 5, 1.0f));
+  EXPECT_EQ(rims.width, 0);
+  EXPECT_EQ(rims.height, 5);
+  EXPECT_TRUE(rims.data.empty());
+}
+
 }  // namespace
 }  // namespace fognav::perception
