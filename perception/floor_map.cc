@@ -111,7 +111,11 @@ void UpdateFloorMap(const MapParams& params, const MapInput& input, MapState* st
   bool last_ok = false;
   int last_slot = kNoSlotYet;  // the vote slot of (last_ix, last_iy, last_h)
   for (const LabelledPoint& lp : input.points) {
-    if (!std::isfinite(lp.h) || !lp.p_G.allFinite()) continue;
+    // a height or spread no plane of a world within +-1000 m has would overflow the fusion
+    if (!(std::abs(lp.h) < 1e3f) || !(lp.h_sigma >= 0 && lp.h_sigma < 1e3f) ||
+        !lp.p_G.allFinite()) {
+      continue;
+    }
     // a point too far for an int cell index lies outside any window
     const float gx = lp.p_G.x() * inv_res, gy = lp.p_G.y() * inv_res;
     if (!(std::abs(gx) < 1e9f && std::abs(gy) < 1e9f)) continue;

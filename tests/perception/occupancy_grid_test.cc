@@ -133,6 +133,18 @@ TEST(OccupancyGrid, PointsTooFarForFloatsDoNothing) {
   for (float f : state.floor) ASSERT_EQ(f, kNegInf);
 }
 
+TEST(OccupancyGrid, FloorPointsOfNoWorldsPlaneGiveNoFloor) {
+  // in the window, but their plane's height or spread overflows the fusion
+  MapParams params;
+  MapState state;
+  const float big = std::numeric_limits<float>::max();
+  MapInput in = Frame({}, {0.01, 0.02, 0.32}, {});
+  in.points.push_back({{0.5f, 0.0f, 0.0f}, big, 0.01f});
+  in.points.push_back({{0.6f, 0.0f, 0.0f}, 0.0f, big});
+  for (int k = 0; k < 3; ++k) UpdateMaps(params, in, &state);
+  for (float f : state.floor) ASSERT_EQ(f, kNegInf);
+}
+
 TEST(OccupancyGrid, RaysAreClippedToTheGrid) {
   MapParams params;
   MapState state;
