@@ -143,11 +143,12 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
     if (Capture("squeue -h -r -t all -j " + job + " -o '%K|%T' 2>/dev/null", &output) == 0) {
       const auto now = ParseTaskStates(output);
       listed = !now.empty();
-      // a task squeue lists no more without having seen it end was cancelled while pending
-      for (auto& [task, state] : states) {
-        if (!now.count(task) && !Ended(state)) state = "CANCELLED";
-      }
+      // squeue lists every task of the array from its submission until MinJobAge after it
+      // ended, but for one cancelled while pending: that one is gone at once
       for (const auto& [task, state] : now) states[task] = state;
+      for (size_t t = 0; listed && t < tasks.size(); ++t) {
+        if (!now.count(int(t)) && !Ended(states[int(t)])) states[int(t)] = "CANCELLED";
+      }
     }
     std::map<std::string, int> counts;
     size_t ended = 0;
