@@ -18,6 +18,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "scenarios/internal/sweep_slurm.h"
@@ -76,13 +77,13 @@ std::string String(const nlohmann::json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_string() ? j[key].get<std::string>() : "";
 }
 
-std::string LastLine(const std::string& path) {
+// the first line that is not empty: the program's error is one line (CLI11 adds a hint after)
+std::string FirstLine(const std::string& path) {
   std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) return line;
   }
-  return last;
+  return "";
 }
 
 std::string Fixed(double v, int digits) {
@@ -153,6 +154,13 @@ nlohmann::json JsonNumber(double v) {
   return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v);
 }
 
+// the run's parameter overrides, "key=value key=value"
+std::string Params(const SweepRun& run) {
+  std::string text;
+  for (const auto& p : run.params) text += (text.empty() ? "" : " ") + p;
+  return text;
+}
+
 struct Column {
   const char* name;
   std::string (*value)(const SweepRow&);
@@ -163,6 +171,7 @@ const std::vector<Column>& Columns(bool perceive) {
       {"name", [](const SweepRow& r) { return r.run.name; }},
       {"scenario", [](const SweepRow& r) { return r.run.scenario; }},
       {"seed", [](const SweepRow& r) { return r.run.seed < 0 ? "" : std::to_string(r.run.seed); }},
+      {"params", [](const SweepRow& r) { return Params(r.run); }},
       {"exit", [](const SweepRow& r) { return std::to_string(r.exit_code); }},
       {"outcome", [](const SweepRow& r) { return r.outcome; }},
       {"reached_goal", [](const SweepRow& r) { return std::string(r.reached_goal ? "1" : "0"); }},
@@ -179,6 +188,7 @@ const std::vector<Column>& Columns(bool perceive) {
       {"name", [](const SweepRow& r) { return r.run.name; }},
       {"scenario", [](const SweepRow& r) { return r.run.scenario; }},
       {"seed", [](const SweepRow& r) { return r.run.seed < 0 ? "" : std::to_string(r.run.seed); }},
+      {"params", [](const SweepRow& r) { return Params(r.run); }},
       {"exit", [](const SweepRow& r) { return std::to_string(r.exit_code); }},
       {"outcome", [](const SweepRow& r) { return r.outcome; }},
       {"accuracy", [](const SweepRow& r) { return Fixed(r.accuracy, 4); }},
@@ -318,6 +328,7 @@ nlohmann::json RowJson(const SweepRow& r, bool perceive) {
       {"name", r.run.name},
       {"scenario", r.run.scenario},
       {"seed", r.run.seed < 0 ? nlohmann::json(nullptr) : nlohmann::json(r.run.seed)},
+      {"params", r.run.params},
       {"exit", r.exit_code},
       {"outcome", r.outcome},
       {"failure", r.failure},
@@ -449,13 +460,45 @@ std::vector<SweepRun> PlanSweep(const SweepOptions& options) {
       }
     }
   }
+  // the grid of parameter overrides: every combination of one value per --set
+  std::vector<std::vector<std::string>> grid = {{}};
+  std::set<std::string> keys;
+  for (const auto& set : options.sets) {
+    const size_t equals = set.find('=');
+    const std::string key = set.substr(0, equals);
+    if (equals == std::string::npos || key.empty() ||
+        key.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_.") != std::string::npos) {
+      throw InputError("--set '" + set + "': expected section.key=value[,value...]");
+    }
+    if (!keys.insert(key).second) throw InputError("--set '" + set + "': " + key + " set twice");
+    std::vector<std::string> values;
+    std::istringstream list(set.substr(equals + 1));
+    for (std::string value; std::getline(list, value, ',');) {
+      if (value.empty() || value.find_first_of("/ \t\n") != std::string::npos) {
+        throw InputError("--set '" + set + "': a value is empty or has a '/' or a space");
+      }
+      values.push_back(value);
+    }
+    if (values.empty()) throw InputError("--set '" + set + "': no value");
+    std::vector<std::vector<std::string>> wider;
+    for (const auto& point : grid) {
+      for (const auto& value : values) {
+        wider.push_back(point);
+        wider.back().push_back(key + "=" + value);
+      }
+    }
+    grid = std::move(wider);
+  }
+  std::vector<int> seeds = {-1};  // the scenario's own
+  if (options.seeds > 0) seeds.clear();
+  for (int seed = 1; seed <= options.seeds; ++seed) seeds.push_back(seed);
   std::vector<SweepRun> runs;
   for (const auto& [stem, file] : files) {
-    if (options.seeds <= 0) {
-      runs.push_back({stem, file, -1});
-    } else {
-      for (int seed = 1; seed <= options.seeds; ++seed) {
-        runs.push_back({stem + "_s" + std::to_string(seed), file, seed});
+    for (const int seed : seeds) {
+      for (const auto& params : grid) {
+        std::string name = stem + (seed > 0 ? "_s" + std::to_string(seed) : "");
+        for (const auto& p : params) name += "_" + p;
+        runs.push_back({name, file, seed, params});
       }
     }
   }
@@ -469,6 +512,7 @@ std::vector<std::string> RunArguments(const SweepOptions& options, const SweepRu
   std::vector<std::string> arguments = {options.perceive ? "perceive" : "run", run.scenario,
                                         "--out", run_dir, "--quiet"};
   if (run.seed >= 0) arguments.insert(arguments.end(), {"--seed", std::to_string(run.seed)});
+  for (const auto& p : run.params) arguments.insert(arguments.end(), {"--set", p});
   return arguments;
 }
 
@@ -489,7 +533,7 @@ SweepRow ReadRow(const SweepRun& run, const std::string& run_dir, bool perceive,
   if (!report.is_object()) {
     row.outcome = exit_code < 0 ? "not run" : "error";
     if (exit_code >= 0) {
-      const std::string last = LastLine(run_dir + "/stderr.log");
+      const std::string last = FirstLine(run_dir + "/stderr.log");
       row.detail = "exit " + std::to_string(exit_code) + (last.empty() ? "" : ": " + last);
     }
     return row;

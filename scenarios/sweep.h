@@ -13,11 +13,13 @@
 
 namespace fognav::scenarios {
 
-// One run of a sweep: a scenario file, with a seed when the sweep has --seeds.
+// One run of a sweep: a scenario file, with a seed when the sweep has --seeds and a point of
+// the grid of parameter overrides when it has --set.
 struct SweepRun {
-  std::string name;      // its folder under DIR/runs/: the file's stem, then "_s<seed>"
+  std::string name;      // its folder under DIR/runs/: the file's stem, "_s<seed>", "_key=value"
   std::string scenario;  // the scenario file as given (or found in a given folder)
   int seed = -1;         // passed as `run --seed`; -1: the scenario's own
+  std::vector<std::string> params;  // "section.key=value", each passed as `--set`
 };
 
 // Which cluster runs the sweep's runs, and how.
@@ -33,6 +35,7 @@ struct SweepOptions {
   std::vector<std::string> scenarios;  // files, folders (their *.yaml) or glob patterns
   std::string out_dir;                 // DIR: runs/, results.*, junit.xml, index.html
   int seeds = 0;                       // N > 0: every scenario with seeds 1..N
+  std::vector<std::string> sets;       // "section.key=v1,v2,...": a run per combination
   int jobs = 0;                        // local workers; 0: the number of cores
   bool perceive = false;               // `fognav perceive` (scored start views), not missions
   std::string compare_dir;             // an earlier sweep's DIR: list the changed outcomes
@@ -72,7 +75,7 @@ std::vector<std::string> RunArguments(const SweepOptions& options, const SweepRu
                                       const std::string& run_dir);
 
 // A run's row from its folder: its report when there is one, otherwise the exit code given
-// (-1: not run) and the last line of run_dir/stderr.log as the detail.
+// (-1: not run) and the first line of run_dir/stderr.log as the detail.
 SweepRow ReadRow(const SweepRun& run, const std::string& run_dir, bool perceive, int exit_code);
 
 // The Wilson score interval of successes out of n at 95 %: {lo, hi}; {0, 1} when n is 0.

@@ -216,6 +216,10 @@ int main(int argc, char** argv) {
       ->required();
   sweep->add_option("--seeds", sweep_options.seeds, "each scenario with the seeds 1..N")
       ->check(CLI::Range(1, 100000));
+  sweep->add_option("--set", sweep_options.sets,
+                    "section.key=v1,v2,...: a run per value (per combination if repeated), "
+                    "passed to each as `--set section.key=v`")
+      ->allow_extra_args(false);
   sweep->add_option("--jobs", sweep_options.jobs, "local runs at a time (default: the cores)")
       ->check(CLI::Range(1, 100000));
   sweep->add_flag("--perceive", sweep_options.perceive,

@@ -38,7 +38,7 @@ std::string Read(const std::string& path) {
 SweepRow Row(const std::string& name, int exit_code, const std::string& outcome,
              double optimal = 2.0, int collisions = 0) {
   SweepRow r;
-  r.run = {name, name + ".yaml", -1};
+  r.run = {name, name + ".yaml", -1, {}};
   r.finished = outcome != "error" && outcome != "not run";
   r.exit_code = exit_code;
   r.outcome = outcome;
@@ -76,6 +76,30 @@ TEST(SweepPlan, FilesFoldersAndGlobsGiveRunsInNameOrderWithSeeds) {
                                       "out/runs/a_world_s2", "--quiet", "--seed", "2"}));
 }
 
+TEST(SweepPlan, EachSetIsAnAxisOfAGridOfOverridesPassedToTheRuns) {
+  const std::string dir = Folder("grid");
+  Write(dir + "/w.yaml", "");
+  SweepOptions options;
+  options.scenarios = {dir + "/w.yaml"};
+  options.seeds = 1;
+  options.sets = {"planner.sidestep_factor=1.2,1.6", "fog.h_floor=0.02"};
+  const auto runs = PlanSweep(options);
+  ASSERT_EQ(runs.size(), 2u);
+  EXPECT_EQ(runs[0].name, "w_s1_planner.sidestep_factor=1.2_fog.h_floor=0.02");
+  EXPECT_EQ(runs[1].params,
+            (std::vector<std::string>{"planner.sidestep_factor=1.6", "fog.h_floor=0.02"}));
+  EXPECT_EQ(RunArguments(options, runs[1], "d"),
+            (std::vector<std::string>{"run", dir + "/w.yaml", "--out", "d", "--quiet", "--seed",
+                                      "1", "--set", "planner.sidestep_factor=1.6", "--set",
+                                      "fog.h_floor=0.02"}));
+  for (const std::string bad : {"planner.x", "=1", "Planner.x=1", "a.b=1,,2", "a.b=../x"}) {
+    options.sets = {bad};
+    EXPECT_THROW(PlanSweep(options), InputError) << bad;
+  }
+  options.sets = {"a.b=1", "a.b=2"};
+  EXPECT_THROW(PlanSweep(options), InputError);
+}
+
 TEST(SweepPlan, ArgumentsThatMatchNothingOrShareANameAreErrorsNamingThem) {
   const std::string dir = Folder("plan_errors");
   Write(dir + "/x/world.yaml", "");
@@ -103,7 +127,7 @@ TEST(SweepPlan, ArgumentsThatMatchNothingOrShareANameAreErrorsNamingThem) {
 
 TEST(SweepRows, AReportMakesARowAndAnInterruptedOrMissingOneDoesNot) {
   const std::string dir = Folder("rows");
-  const SweepRun run{"w", "w.yaml", 3};
+  const SweepRun run{"w", "w.yaml", 3, {}};
   Write(dir + "/done/report.json",
         R"({"success": false, "reached_goal": false, "failure": "collision",
             "failure_detail": "hit box", "cycles": 12, "collisions": 2, "spl": null,
@@ -163,9 +187,10 @@ TEST(SweepFiles, TableJunitIndexAndComparison) {
   WriteSweepFiles(dir, rows, false);
   const std::string tsv = Read(dir + "/results.tsv");
   EXPECT_EQ(tsv.substr(0, tsv.find('\n')),
-            "name\tscenario\tseed\texit\toutcome\treached_goal\tfailure\tcycles\tcollisions\tspl\t"
+            "name\tscenario\tseed\tparams\texit\toutcome\treached_"
+            "goal\tfailure\tcycles\tcollisions\tspl\t"
             "optimal_path_length\ttraversability\tunsafe_cells\twall_time_s\tdetail");
-  EXPECT_NE(tsv.find("\nb\tb.yaml\t\t1\ttimeout\t0\ttimeout\t"), std::string::npos) << tsv;
+  EXPECT_NE(tsv.find("\nb\tb.yaml\t\t\t1\ttimeout\t0\ttimeout\t"), std::string::npos) << tsv;
   const std::string junit = Read(dir + "/junit.xml");
   EXPECT_NE(junit.find("tests=\"4\" failures=\"1\" errors=\"1\" skipped=\"1\""), std::string::npos)
       << junit;
@@ -209,9 +234,9 @@ TEST(SweepSlurm, JobScriptHasATaskPerGroupOfRunsAndTheOptions) {
   options.slurm.time = "00:20:00";
   options.slurm.mem = "2G";
   std::vector<SweepRow> rows(3);
-  rows[0].run = {"a_s1", "/w/a.yaml", 1};
-  rows[1].run = {"a_s2", "/w/a.yaml", 2};
-  rows[2].run = {"it's", "/w/it's.yaml", -1};
+  rows[0].run = {"a_s1", "/w/a.yaml", 1, {}};
+  rows[1].run = {"a_s2", "/w/a.yaml", 2, {}};
+  rows[2].run = {"it's", "/w/it's.yaml", -1, {}};
   const std::string script = internal::SbatchScript(options, rows, {{0, 1}, {2}});
   EXPECT_NE(script.find("#SBATCH --array=0-1\n"), std::string::npos) << script;
   EXPECT_NE(script.find("#SBATCH --partition=cpu\n#SBATCH --time=00:20:00\n#SBATCH --mem=2G\n"),

@@ -356,8 +356,8 @@ TEST(FognavCli, SweepRunsEachWorldAndSeedAndResumes) {
   ASSERT_EQ(rows.size(), 5u);
   EXPECT_EQ(rows[1].substr(0, rows[1].find("\t", rows[1].find("\t") + 1)),
             "tiny_open_s1\t" + worlds + "/tiny_open.yaml");
-  EXPECT_NE(rows[1].find("\t1\t0\tsuccess\t1\t\t"), std::string::npos) << rows[1];
-  EXPECT_NE(rows[4].find("tiny_short_s2\t" + worlds + "/tiny_short.yaml\t2\t1\ttimeout\t"),
+  EXPECT_NE(rows[1].find("\t1\t\t0\tsuccess\t1\t\t"), std::string::npos) << rows[1];
+  EXPECT_NE(rows[4].find("tiny_short_s2\t" + worlds + "/tiny_short.yaml\t2\t\t1\ttimeout\t"),
             std::string::npos)
       << rows[4];
   // the seeds drove the noise: the two runs of a world ended apart

@@ -67,7 +67,8 @@ assert len(a) == 9, f"expected 8 runs, got {len(a) - 1}"
 assert a == b, f"the tables differ:\n{a}\n{b}"
 for row in a[1:]:
     assert report(local, row[0]) == report(slurm, row[0]), f"{row[0]}: the reports differ"
-assert [r[4] for r in a[1:]].count("success") == 6, a
+outcome = a[0].index("outcome")
+assert [r[outcome] for r in a[1:]].count("success") == 6, a
 print("slurm = local: 8 runs, report for report")
 EOF
 
