@@ -695,6 +695,15 @@ int RunSweep(const SweepOptions& options) {
   if (options.backend != "local" && options.backend != "slurm") {
     throw InputError("--backend: expected local or slurm, not '" + options.backend + "'");
   }
+  for (const auto& [flag, value] :
+       {std::pair<const char*, std::string>{"--partition", options.slurm.partition},
+        {"--time", options.slurm.time},
+        {"--mem", options.slurm.mem}}) {
+    if (value.find_first_of(" \t\n\r'\"") != std::string::npos) {
+      throw InputError(std::string(flag) + " '" + value +
+                       "': expected a value without spaces or quotes");
+    }
+  }
   const std::vector<SweepRun> plan = PlanSweep(options);
   // the old results first, so a bad --compare stops the sweep before it runs
   std::vector<SweepRow> rows;

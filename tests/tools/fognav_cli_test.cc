@@ -413,6 +413,27 @@ TEST(FognavCli, SweepRunsEachWorldAndSeedAndResumes) {
   EXPECT_NE(none.output.find("none_*.yaml"), std::string::npos) << none.output;
 }
 
+// `fognav sweep --perceive`: the start views of each world, scored, a row each
+TEST(FognavCli, SweepPerceiveScoresTheStartViews) {
+  const std::string worlds = TinyWorlds();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "fognav_cli_sweep_perceive").string();
+  std::filesystem::remove_all(out);
+  Outcome o = RunFognav("sweep " + worlds + "/tiny_open.yaml --perceive --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("sweep: 1 runs; 1 perceived"), std::string::npos) << o.output;
+  const auto results = ReadJson(out + "/results.json");
+  ASSERT_EQ(results["runs"].size(), 1u);
+  EXPECT_EQ(results["runs"][0]["outcome"], "perceived");
+  EXPECT_GT(results["runs"][0]["accuracy"].get<double>(), 0.9);  // an open floor
+  EXPECT_GT(results["runs"][0]["fog_cells"].get<int>(), 100);
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs/tiny_open/perception.json"));
+  // the start views have no noise for a seed to drive
+  Outcome seeded = RunFognav("sweep " + worlds + "/tiny_open.yaml --perceive --seeds 2 --out " + out);
+  EXPECT_EQ(seeded.exit_code, 2) << seeded.output;
+  EXPECT_NE(seeded.output.find("--seeds"), std::string::npos) << seeded.output;
+}
+
 // Ctrl-C on a sweep reaches its runs too (the terminal signals the process group): it ends with
 // exit code 4 and its table; a rerun keeps every run that had finished and counts none twice
 TEST(FognavCli, InterruptedSweepLosesNoFinishedRunAndCountsNoneTwice) {
