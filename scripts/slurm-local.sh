@@ -50,14 +50,15 @@ chmod 0600 "$dir/munge.key"
 munged --force --key-file="$dir/munge.key" --socket="$dir/munge.socket" \
   --pid-file="$dir/munged.pid" --log-file="$dir/munged.log" --seed-file="$dir/munged.seed"
 
-# the node as slurmd sees it: NodeName=HOST CPUs=... RealMemory=...
+# the node as slurmd sees it: NodeName=HOST CPUs=... RealMemory=...; reached at 127.0.0.1,
+# so a container whose host name does not resolve works too
 node="$(slurmd -C | head -n 1)"
 host="$(echo "$node" | sed 's/^NodeName=\([^ ]*\).*/\1/')"
 cpus="$(echo "$node" | sed 's/.* CPUs=\([0-9]*\).*/\1/')"
 memory="$(echo "$node" | sed 's/.* RealMemory=\([0-9]*\).*/\1/')"
 cat > "$dir/slurm.conf" << EOF
 ClusterName=fognav
-SlurmctldHost=$host
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=root
 AuthType=auth/munge
 AuthInfo=socket=$dir/munge.socket
@@ -84,7 +85,7 @@ MinJobAge=600
 # a task takes a CPU and its share of the memory, so the node runs one task per CPU
 DefMemPerCPU=$((memory / cpus))
 KillWait=5
-$node State=UNKNOWN
+$node NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=local Nodes=$host Default=YES MaxTime=INFINITE State=UP
 EOF
 export SLURM_CONF="$dir/slurm.conf"
