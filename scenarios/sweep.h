@@ -28,7 +28,7 @@ struct SlurmOptions {
   std::string time;       // sbatch --time per task, e.g. "00:30:00"; "" the partition's
   std::string mem;        // sbatch --mem per task, e.g. "2G"; "" the partition's
   int per_task = 1;       // runs done one after another by each array task
-  double poll_s = 1;      // seconds between looks at squeue
+  double poll_s = 2;      // seconds between looks at squeue (the runs' files: every 0.2 s)
 };
 
 struct SweepOptions {

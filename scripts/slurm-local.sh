@@ -74,7 +74,9 @@ ProctrackType=proctrack/linuxproc
 TaskPlugin=task/none
 MpiDefault=none
 ReturnToService=2
-SchedulerType=sched/backfill
+SchedulerType=sched/builtin
+# a task starts as soon as a CPU is free (the defaults wait up to 3 s for more submissions)
+SchedulerParameters=batch_sched_delay=0,sched_interval=1
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 JobCompType=jobcomp/filetxt

@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -117,6 +118,11 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
                        todo.begin() + long(std::min(todo.size(), k + size_t(per_task))));
   }
   MakeOutputFolder(options.out_dir + "/slurm");
+  // the runs to do start from empty folders: an exit_code there is this job's
+  for (size_t i : todo) {
+    std::error_code error;
+    fs::remove_all(options.out_dir + "/runs/" + (*rows)[i].run.name, error);
+  }
   const std::string script = Absolute(options.out_dir) + "/slurm/sweep.sbatch";
   WriteFileAtomically(script, SbatchScript(options, *rows, tasks));
 
@@ -133,6 +139,7 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
   std::map<int, std::string> states;
   bool stopped = false;
   std::string last_line;
+  bool all_written = false;
   for (;;) {
     if (options.stop != nullptr && *options.stop) {
       Capture("scancel " + job + " 2>&1", &output);
@@ -162,11 +169,17 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
     for (const auto& [state, n] : counts) line += ", " + std::to_string(n) + " " + state;
     if (line != last_line) std::cerr << line << "\n";
     last_line = line;
-    // done when every task ended, or squeue no longer knows the job
-    if (ended == tasks.size() || !listed) break;
-    for (double waited = 0; waited < options.slurm.poll_s; waited += 0.1) {
+    // done when every task ended, squeue no longer knows the job, or every run wrote its exit
+    // code (a task's last act)
+    if (ended == tasks.size() || !listed || all_written) break;
+    // until the next look at squeue, a look at the runs' exit codes every 0.2 s
+    for (double waited = 0; waited < options.slurm.poll_s && !all_written; waited += 0.2) {
       if (options.stop != nullptr && *options.stop) break;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      all_written = std::all_of(todo.begin(), todo.end(), [&](size_t i) {
+        std::error_code error;
+        return fs::exists(options.out_dir + "/runs/" + (*rows)[i].run.name + "/exit_code", error);
+      });
     }
   }
   // sacct has the states of tasks squeue has forgotten
@@ -183,7 +196,9 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
       SweepRow& row = (*rows)[i];
       const std::string dir = options.out_dir + "/runs/" + row.run.name;
       row = ReadRow(row.run, dir, options.perceive, ExitCodeFile(dir + "/exit_code"));
-      if (row.finished || (row.exit_code >= 0 && state == "COMPLETED")) continue;
+      // a run that ended by itself keeps its error; one stopped from outside (no exit code, or
+      // interrupted by the task's end) is the task's
+      if (row.finished || (row.exit_code >= 0 && row.outcome == "error")) continue;
       row.outcome = "error";
       row.detail = "Slurm task " + job + "_" + std::to_string(t) + " " + state +
                    (row.detail.empty() ? "" : "; " + row.detail);

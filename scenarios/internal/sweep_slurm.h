@@ -21,8 +21,8 @@ std::string SbatchScript(const SweepOptions& options, const std::vector<SweepRow
 std::map<int, std::string> ParseTaskStates(const std::string& text);
 
 // Submits the runs todo (indices into rows) with sbatch, follows the job with squeue and sacct
-// until every task ended, and fills their rows; a run of a task that ended otherwise than
-// COMPLETED without a report is an error naming the task's Slurm state. Returns false if
+// until every task ended, and fills their rows; a run that did not end by itself (no exit code
+// written: its task was cancelled, timed out, failed) is an error naming the task's Slurm state. Returns false if
 // options.stop ended the sweep first (the job is cancelled then). Throws std::runtime_error if
 // sbatch fails.
 bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
