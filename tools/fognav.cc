@@ -1,7 +1,7 @@
 // fognav: the command-line program. Parses flags and calls scenarios/; exit codes as DESIGN.md:
 // 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure;
-// and since: 4 a run interrupted by SIGINT or SIGTERM (its outputs written), 5 an output that
-// could not be written.
+// and since: 4 a run (or a sweep) interrupted by SIGINT or SIGTERM (its outputs written), 5 an
+// output that could not be written. `sweep` returns 1 when any of its runs did not pass.
 #include <signal.h>
 
 #include <atomic>
