@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `fognav sweep --backend slurm` on a real one-node cluster (scripts/slurm-local.sh): 4 small
 # worlds x 2 seeds give the same results as the local backend, report for report but for the
-# timings; a task cancelled with scancel is reported by run name with its state, and the rerun
-# does its run alone. Exit 77 (skipped) where slurm-wlm, munge or python3 is not installed.
+# timings; tasks cancelled with scancel, running or pending, are reported by run name with their
+# state, and the rerun does their runs alone. Exit 77 (skipped) where slurm-wlm, munge or python3
+# is not installed.
 # Usage: slurm_sweep_test.sh FOGNAV_BINARY WORK_DIR
 set -euo pipefail
 fognav="$1"
@@ -72,9 +73,20 @@ assert [r[outcome] for r in a[1:]].count("success") == 6, a
 print("slurm = local: 8 runs, report for report")
 EOF
 
-# a task cancelled with scancel: reported by run name with its Slurm state, redone by the rerun
+# tasks cancelled with scancel, one running and one pending: reported by run name with their
+# Slurm state, redone by the rerun; a_far (a longer mission) is task 0, right task 3
+mkdir -p "$work/cancel_worlds"
+cp "$work/worlds/"*.yaml "$work/cancel_worlds/"
+cat > "$work/cancel_worlds/a_far.yaml" << EOF
+name: a_far
+robot: {start: [0.0, 0.0, 0.0]}
+goal: {position: [1.8, 0.0], tolerance: 0.2}
+world: {floor: [3.2, 1.6], floor_center: [1.0, 0.0]}
+limits: {max_cycles: 80, max_steps: 400}
+expect: {reach_goal: true}
+EOF
 out="$work/cancelled"
-"$fognav" sweep "$work/worlds" --out "$out" --backend slurm > "$work/cancelled.log" 2>&1 &
+"$fognav" sweep "$work/cancel_worlds" --out "$out" --backend slurm > "$work/cancelled.log" 2>&1 &
 sweep=$!
 job=""
 for _ in $(seq 300); do
@@ -83,17 +95,25 @@ for _ in $(seq 300); do
   sleep 0.1
 done
 [ -n "$job" ] || { cat "$work/cancelled.log"; exit 1; }
-scancel "${job}_2"  # the third run, right_s... in name order: ahead, left, right, short
+scancel "${job}_3"
+for _ in $(seq 300); do
+  [ "$(squeue -h -j "${job}_0" -o '%T' 2> /dev/null)" = RUNNING ] && break
+  sleep 0.1
+done
+sleep 0.5  # a_far's mission under way
+scancel "${job}_0"
 code=0
 wait "$sweep" || code=$?
 cat "$work/cancelled.log"
 [ "$code" -eq 1 ] || { echo "expected exit code 1, got $code"; exit 1; }
-grep -q "^NOT PASSED right: error (Slurm task ${job}_2 CANCELLED" "$work/cancelled.log"
+grep -q "^NOT PASSED a_far: error (Slurm task ${job}_0 CANCELLED" "$work/cancelled.log"
+grep -q "^NOT PASSED right: error (Slurm task ${job}_3 CANCELLED" "$work/cancelled.log"
 grep -q "<error type=" "$out/junit.xml"
-"$fognav" sweep "$work/worlds" --out "$out" --backend slurm > "$work/resumed.log" 2>&1 ||
+"$fognav" sweep "$work/cancel_worlds" --out "$out" --backend slurm > "$work/resumed.log" 2>&1 ||
   [ $? -eq 1 ]
 cat "$work/resumed.log"
-grep -q "sweep: 4 runs, 3 finished before, 1 to run (slurm)" "$work/resumed.log"
-grep -q ", 1 tasks of up to 1 runs" "$work/resumed.log"
+grep -q "sweep: 5 runs, 3 finished before, 2 to run (slurm)" "$work/resumed.log"
+grep -q ", 2 tasks of up to 1 runs" "$work/resumed.log"
+grep -q "^a_far	.*	success	" "$out/results.tsv"
 grep -q "^right	.*	success	" "$out/results.tsv"
-echo "the cancelled task was reported and redone"
+echo "the cancelled tasks were reported and redone"
