@@ -9,7 +9,7 @@ east end. Between them stand a few of: blocks (low enough to step round or high,
 flights of treads up and down, tables (high enough to crawl under, or too low), and dividers
 across the room with an opening. Objects keep 0.3 m from each other, from the walls and from
 the start and goal, so a way usually exists; `fognav run` reports `optimal_path_length` 0 where
-the planner finds none on the ground-truth map, and scripts/sweep.py lists such rooms apart.
+the planner finds none on the ground-truth map, and `fognav sweep` counts such rooms apart.
 With --variants every other room also gets a wider camera (55-60 degrees, 320x240), odometry
 noise or a start turned away from the goal. With --turn each room (the same rooms as without
 it) is turned as a whole by a random angle about the origin and shifted by a random part of a

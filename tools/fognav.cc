@@ -1,12 +1,14 @@
 // fognav: the command-line program. Parses flags and calls scenarios/; exit codes as DESIGN.md:
 // 0 ran and every expectation held, 1 an expectation failed, 2 bad input, 3 simulator failure;
-// and since: 4 a run interrupted by SIGINT or SIGTERM (its outputs written), 5 an output that
-// could not be written.
+// and since: 4 a run (or a sweep) interrupted by SIGINT or SIGTERM (its outputs written), 5 an
+// output that could not be written. `sweep` returns 1 when any of its runs did not pass.
 #include <signal.h>
 
 #include <atomic>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include "scenarios/params.h"
 #include "scenarios/perception_cycle.h"
 #include "scenarios/scenario.h"
+#include "scenarios/sweep.h"
 #include "scenarios/views.h"
 #include "sim/model.h"
 
@@ -43,10 +46,11 @@ void RequestStop(int) { stop_requested = true; }
 // SIGINT and SIGTERM end the run after its cycle; a second one of the same kind ends the
 // process at once (SA_RESETHAND restores the default action). SA_RESTART: a write under way
 // goes on rather than failing as interrupted.
-void StopOnSignals() {
+// A sweep is stopped the same way, but without SA_RESTART: its wait for a run returns at once.
+void StopOnSignals(bool restart = true) {
   struct sigaction action = {};
   action.sa_handler = RequestStop;
-  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  action.sa_flags = SA_RESETHAND | (restart ? SA_RESTART : 0);
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
@@ -102,10 +106,12 @@ int Perceive(const std::string& path, const std::string& out, const std::string&
   return kExitOk;
 }
 
+// seed >= 0 replaces the scenario's seed (of the odometry noise)
 int Run(const std::string& path, const std::string& out, const std::string& depth,
         const std::vector<std::string>& sets, int dump_every, const std::string& video,
-        bool quiet) {
+        bool quiet, int64_t seed) {
   auto scenario = LoadWithDepth(path, depth, sets);
+  if (seed >= 0) scenario.seed = uint64_t(seed);
   fognav::scenarios::MissionOptions options;
   options.out_dir = out;
   options.video_path = video;
@@ -145,6 +151,15 @@ int Clip(const std::string& motion, const std::string& out, int every, bool quie
   return result.collisions == 0 ? kExitOk : kExitExpectationFailed;
 }
 
+int Sweep(fognav::scenarios::SweepOptions options) {
+  std::error_code error;
+  options.program = std::filesystem::read_symlink("/proc/self/exe", error).string();
+  if (error) throw std::runtime_error("cannot find the program's own file: " + error.message());
+  options.stop = &stop_requested;
+  StopOnSignals(/*restart=*/false);
+  return fognav::scenarios::RunSweep(options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -177,6 +192,9 @@ int main(int argc, char** argv) {
                   "head camera, FOG with the plan; twice real time; report.html plays .webm)");
   run->add_option("--set", sets, set_help)->allow_extra_args(false);
   run->add_flag("--quiet", quiet, "print nothing but errors");
+  int64_t seed = -1;
+  run->add_option("--seed", seed, "seed of the odometry noise, instead of the scenario's")
+      ->check(CLI::Range(int64_t(0), int64_t(std::numeric_limits<uint32_t>::max())));
 
   auto* perceive = app.add_subcommand(
       "perceive", "look around from the start pose, perceive every view, score against truth");
@@ -204,6 +222,36 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1000000));
   clip->add_flag("--quiet", quiet, "print nothing but errors");
 
+  fognav::scenarios::SweepOptions sweep_options;
+  auto* sweep = app.add_subcommand(
+      "sweep", "run many missions (or start views), N at a time or as a Slurm job array");
+  sweep->add_option("scenarios", sweep_options.scenarios, "scenario files, folders or globs")
+      ->required();
+  sweep->add_option("--out", sweep_options.out_dir,
+                    "output folder: runs/, results.tsv, results.json, junit.xml, index.html; a "
+                    "rerun keeps its finished runs")
+      ->required();
+  sweep->add_option("--seeds", sweep_options.seeds, "each scenario with the seeds 1..N")
+      ->check(CLI::Range(1, 100000));
+  sweep->add_option("--set", sweep_options.sets,
+                    "section.key=v1,v2,...: a run per value (per combination if repeated), "
+                    "passed to each as `--set section.key=v`")
+      ->allow_extra_args(false);
+  sweep->add_option("--jobs", sweep_options.jobs, "local runs at a time (default: the cores)")
+      ->check(CLI::Range(1, 100000));
+  sweep->add_flag("--perceive", sweep_options.perceive,
+                  "the start views, scored, as `fognav perceive` (not missions)");
+  sweep->add_option("--compare", sweep_options.compare_dir,
+                    "an earlier sweep's output folder: list the runs whose outcome changed");
+  sweep->add_option("--backend", sweep_options.backend, "local (default) or slurm")
+      ->check(CLI::IsMember({"local", "slurm"}));
+  sweep->add_option("--partition", sweep_options.slurm.partition, "slurm: the partition");
+  sweep->add_option("--time", sweep_options.slurm.time, "slurm: time limit of a task");
+  sweep->add_option("--mem", sweep_options.slurm.mem, "slurm: memory of a task, e.g. 2G");
+  sweep->add_option("--per-task", sweep_options.slurm.per_task,
+                    "slurm: runs one after another in each array task (default 1)")
+      ->check(CLI::Range(1, 100000));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -213,7 +261,8 @@ int main(int argc, char** argv) {
 
   try {
     if (*validate) return Validate(scenario_path);
-    if (*run) return Run(scenario_path, out_dir, depth, sets, dump_every, video, quiet);
+    if (*run) return Run(scenario_path, out_dir, depth, sets, dump_every, video, quiet, seed);
+    if (*sweep) return Sweep(sweep_options);
     if (*render) return Render(scenario_path, out_dir);
     if (*perceive) return Perceive(scenario_path, out_dir, depth, sets, quiet);
     if (*params) {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -389,47 +390,215 @@ TEST(FognavCli, RenderWritesTheViews) {
   }
 }
 
-// scripts/sweep.py writes OUT/index.html: the summary, then a row per world in name order
-// linking its report.html, with its map as a thumbnail where there is one. A stand-in for
-// fognav writes the reports, so the sweep takes no time.
-TEST(FognavCli, SweepWritesAnIndexOfTheWorlds) {
-  if (std::system("python3 --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no python3";
-  const auto tmp = std::filesystem::temp_directory_path() / "fognav_sweep_index";
-  std::filesystem::remove_all(tmp);
-  std::filesystem::create_directories(tmp);
-  const std::string fake = (tmp / "fake_fognav").string();
-  // run SCENARIO --out DIR --quiet: b_world fails with no_path and draws no map
-  std::ofstream(fake) << "#!/bin/sh\nmkdir -p \"$4/maps\"\ncase \"$2\" in\n"
-                         "*b_world*) echo '{\"success\": false, \"failure\": \"no_path\", "
-                         "\"spl\": 0, \"cycles\": 9, \"optimal_path_length\": 2, "
-                         "\"wall_time_s\": 1.5}' > \"$4/report.json\"; exit 1;;\n"
-                         "*) echo '{\"success\": true, \"failure\": null, \"spl\": 0.9, "
-                         "\"cycles\": 4, \"optimal_path_length\": 2, \"wall_time_s\": 2.25, "
-                         "\"fog\": {\"traversability\": 0.97, \"unsafe_cells\": 0}}' > "
-                         "\"$4/report.json\"; echo png > \"$4/maps/mission.png\";;\nesac\n";
-  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
-  const std::string command = "python3 scripts/sweep.py " + (tmp / "out").string() + " " +
-                              TempFile("b_world.yaml", "") + " " + TempFile("a_world.yaml", "") +
-                              " --fognav " + fake + " > /dev/null 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0);
-  std::ifstream in(tmp / "out" / "index.html");
-  const std::string html(std::istreambuf_iterator<char>(in), {});
-  EXPECT_NE(html.find("<p id=\"summary\">sweep: 1/2 passed, mean SPL 0.450"), std::string::npos)
-      << html;
-  const size_t a = html.find("<td><a href=\"a_world/report.html\">a_world</a></td>"
-                             "<td class=\"ok\">success</td>");
-  const size_t b = html.find("<td><a href=\"b_world/report.html\">b_world</a></td>"
-                             "<td class=\"bad\">failed</td><td>no_path</td>");
-  ASSERT_NE(a, std::string::npos) << html;
-  ASSERT_NE(b, std::string::npos) << html;
-  EXPECT_LT(a, b);
-  EXPECT_NE(html.find("<td>0.900</td><td>4</td><td>2.2</td><td>0.9700</td><td>0</td>"
-                      "<td><a href=\"a_world/report.html\"><img src=\"a_world/maps/mission.png\""),
+// Small worlds for the sweep's tests, a mission of about a second each: tiny_open reaches its
+// goal (odometry noise, so its seed matters), tiny_short runs out of cycles (failure timeout).
+std::string TinyWorlds() {
+  const auto dir = std::filesystem::temp_directory_path() / "fognav_sweep_worlds";
+  std::filesystem::create_directories(dir);
+  const std::string world = R"(
+robot: {start: [0.0, 0.0, 0.0]}
+goal: {position: [0.8, 0.0], tolerance: 0.2}
+world: {floor: [2.0, 1.6], floor_center: [0.5, 0.0]}
+odometry_noise: {xy: 0.01, yaw_deg: 1.0}
+expect: {reach_goal: true}
+)";
+  std::ofstream(dir / "tiny_open.yaml") << "name: tiny_open" << world
+                                        << "limits: {max_cycles: 40, max_steps: 200}\n";
+  std::ofstream(dir / "tiny_short.yaml") << "name: tiny_short" << world
+                                         << "limits: {max_cycles: 1, max_steps: 200}\n";
+  return dir.string();
+}
+
+nlohmann::json ReadJson(const std::string& path) {
+  return nlohmann::json::parse(std::ifstream(path));
+}
+
+// `run --seed N` replaces the scenario's seed: the same seed walks the same way, another seed
+// another way (the odometry noise differs)
+TEST(FognavCli, RunSeedReplacesTheScenariosSeed) {
+  const std::string worlds = TinyWorlds();
+  const std::string out = (std::filesystem::temp_directory_path() / "fognav_cli_seed").string();
+  std::vector<nlohmann::json> poses;
+  for (const char* seed : {"1", "1", "2"}) {
+    std::filesystem::remove_all(out);
+    Outcome o = RunFognav("run " + worlds + "/tiny_open.yaml --out " + out + " --quiet --seed " +
+                          seed);
+    ASSERT_EQ(o.exit_code, 0) << o.output;
+    poses.push_back(ReadJson(out + "/report.json")["final_pose"]["true"]);
+  }
+  EXPECT_EQ(poses[0], poses[1]);
+  EXPECT_NE(poses[0], poses[2]);
+  Outcome bad = RunFognav("run " + worlds + "/tiny_open.yaml --out " + out + " --seed -3");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+}
+
+// `fognav sweep`: every world with every seed in a folder of its own, the table, the JUnit file,
+// the summary and the index; a rerun keeps the finished runs and redoes a half-done one
+TEST(FognavCli, SweepRunsEachWorldAndSeedAndResumes) {
+  const std::string worlds = TinyWorlds();
+  const std::string out = (std::filesystem::temp_directory_path() / "fognav_cli_sweep").string();
+  std::filesystem::remove_all(out);
+  const std::string command = "sweep " + worlds + "/tiny_*.yaml --seeds 2 --jobs 2 --out " + out;
+  Outcome o = RunFognav(command);
+  ASSERT_EQ(o.exit_code, 1) << o.output;  // tiny_short fails
+  EXPECT_NE(o.output.find("sweep: 4 runs, 0 finished before, 4 to run (local)"),
+            std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("sweep: 4 runs; 4 with a way on the ground truth\n"
+                          "  success     2/4 = 50.0 % (95 % interval 15.0 % - 85.0 %)"),
+            std::string::npos)
+      << o.output;
+  EXPECT_NE(o.output.find("  failures    timeout 2\n"), std::string::npos) << o.output;
+  const auto rows = ReadLines(out + "/results.tsv");
+  ASSERT_EQ(rows.size(), 5u);
+  EXPECT_EQ(rows[1].substr(0, rows[1].find("\t", rows[1].find("\t") + 1)),
+            "tiny_open_s1\t" + worlds + "/tiny_open.yaml");
+  EXPECT_NE(rows[1].find("\t1\t\t0\tsuccess\t1\t\t"), std::string::npos) << rows[1];
+  EXPECT_NE(rows[4].find("tiny_short_s2\t" + worlds + "/tiny_short.yaml\t2\t\t1\ttimeout\t"),
+            std::string::npos)
+      << rows[4];
+  // the seeds drove the noise: the two runs of a world ended apart
+  const auto s1 = ReadJson(out + "/runs/tiny_open_s1/report.json")["final_pose"]["true"];
+  const auto s2 = ReadJson(out + "/runs/tiny_open_s2/report.json")["final_pose"]["true"];
+  EXPECT_NE(s1, s2);
+  const auto results = ReadJson(out + "/results.json");
+  ASSERT_EQ(results["runs"].size(), 4u);
+  EXPECT_EQ(results["runs"][3]["failure"], "timeout");
+  EXPECT_EQ(results["runs"][3]["seed"], 2);
+  std::ifstream junit_file(out + "/junit.xml");
+  const std::string junit(std::istreambuf_iterator<char>(junit_file), {});
+  EXPECT_NE(junit.find("tests=\"4\" failures=\"2\" errors=\"0\""), std::string::npos) << junit;
+  EXPECT_NE(junit.find("name=\"tiny_short_s1\""), std::string::npos) << junit;
+  std::ifstream index_file(out + "/index.html");
+  const std::string index(std::istreambuf_iterator<char>(index_file), {});
+  EXPECT_NE(index.find("<a href=\"runs/tiny_open_s1/report.html\"><img src=\"runs/tiny_open_s1/"
+                       "maps/mission.png\""),
             std::string::npos);
-  // no FOG scores and no map: empty cells, no image
-  EXPECT_NE(html.find("<td>1.5</td><td></td><td></td><td></td></tr>"), std::string::npos);
-  EXPECT_NE(html.find("<script>"), std::string::npos);
-  EXPECT_EQ(html.find("<script src"), std::string::npos);
+
+  // tiny_open_s2 is half done (no report): it alone is run again
+  const auto kept = std::filesystem::last_write_time(out + "/runs/tiny_open_s1/report.json");
+  std::filesystem::remove(out + "/runs/tiny_open_s2/report.json");
+  std::ofstream(out + "/runs/tiny_open_s2/left_over") << "from the run that stopped";
+  Outcome again = RunFognav(command);
+  ASSERT_EQ(again.exit_code, 1) << again.output;
+  EXPECT_NE(again.output.find("sweep: 4 runs, 3 finished before, 1 to run (local)"),
+            std::string::npos)
+      << again.output;
+  EXPECT_NE(again.output.find("[1/1] tiny_open_s2: success"), std::string::npos) << again.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/runs/tiny_open_s2/left_over"));
+  EXPECT_EQ(std::filesystem::last_write_time(out + "/runs/tiny_open_s1/report.json"), kept);
+  // the same table but for the wall time of the run done again
+  auto rows_again = ReadLines(out + "/results.tsv");
+  ASSERT_EQ(rows_again.size(), rows.size());
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (i == 2) {
+      EXPECT_EQ(rows_again[i].substr(0, rows_again[i].rfind('\t', rows_again[i].size() - 2)),
+                rows[i].substr(0, rows[i].rfind('\t', rows[i].size() - 2)));
+    } else {
+      EXPECT_EQ(rows_again[i], rows[i]);
+    }
+  }
+
+  // --compare against itself: no outcome changed; a bad folder is exit code 2 naming the file
+  Outcome same = RunFognav(command + " --compare " + out);
+  EXPECT_NE(same.output.find("changed outcome: 0 runs"), std::string::npos) << same.output;
+  Outcome bad = RunFognav(command + " --compare " + out + "/nowhere");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find(out + "/nowhere/results.tsv"), std::string::npos) << bad.output;
+  Outcome none = RunFognav("sweep " + worlds + "/none_*.yaml --out " + out);
+  EXPECT_EQ(none.exit_code, 2) << none.output;
+  EXPECT_NE(none.output.find("none_*.yaml"), std::string::npos) << none.output;
+}
+
+// `fognav sweep --perceive`: the start views of each world, scored, a row each
+TEST(FognavCli, SweepPerceiveScoresTheStartViews) {
+  const std::string worlds = TinyWorlds();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "fognav_cli_sweep_perceive").string();
+  std::filesystem::remove_all(out);
+  Outcome o = RunFognav("sweep " + worlds + "/tiny_open.yaml --perceive --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_NE(o.output.find("sweep: 1 runs; 1 perceived"), std::string::npos) << o.output;
+  const auto results = ReadJson(out + "/results.json");
+  ASSERT_EQ(results["runs"].size(), 1u);
+  EXPECT_EQ(results["runs"][0]["outcome"], "perceived");
+  EXPECT_GT(results["runs"][0]["accuracy"].get<double>(), 0.9);  // an open floor
+  EXPECT_GT(results["runs"][0]["fog_cells"].get<int>(), 100);
+  EXPECT_TRUE(std::filesystem::exists(out + "/runs/tiny_open/perception.json"));
+  // the start views have no noise for a seed to drive
+  Outcome seeded = RunFognav("sweep " + worlds + "/tiny_open.yaml --perceive --seeds 2 --out " + out);
+  EXPECT_EQ(seeded.exit_code, 2) << seeded.output;
+  EXPECT_NE(seeded.output.find("--seeds"), std::string::npos) << seeded.output;
+}
+
+// Ctrl-C on a sweep reaches its runs too (the terminal signals the process group): it ends with
+// exit code 4 and its table; a rerun keeps every run that had finished and counts none twice
+TEST(FognavCli, InterruptedSweepLosesNoFinishedRunAndCountsNoneTwice) {
+  const std::string worlds = TinyWorlds();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "fognav_cli_sweep_interrupted").string();
+  std::filesystem::remove_all(out);
+  std::filesystem::create_directories(out);
+  std::vector<std::string> args = {FOGNAV_BINARY, "sweep", worlds + "/tiny_open.yaml", "--seeds",
+                                   "3", "--jobs", "1", "--out", out};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  const std::string log = out + ".log";
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // a group of its own
+  posix_spawnattr_setpgroup(&attributes, 0);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, FOGNAV_BINARY, &actions, &attributes, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
+
+  // Ctrl-C once the first run has finished
+  const std::string first = out + "/runs/tiny_open_s1/report.json";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(2);
+  while (!std::filesystem::exists(first) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_EQ(kill(-pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  std::ifstream log_file(log);
+  const std::string output(std::istreambuf_iterator<char>(log_file), {});
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 4) << output;
+
+  // the finished runs of the first sweep, and when their reports were written
+  std::map<std::string, std::filesystem::file_time_type> finished;
+  const nlohmann::json results = ReadJson(out + "/results.json");
+  for (const auto& row : results["runs"]) {
+    if (row["outcome"] == "success") {
+      const std::string name = row["name"];
+      finished[name] = std::filesystem::last_write_time(out + "/runs/" + name + "/report.json");
+    } else {
+      EXPECT_EQ(row["outcome"], "not run") << row;
+    }
+  }
+  ASSERT_GE(finished.size(), 1u);
+  ASSERT_LT(finished.size(), 3u) << "the sweep ended before the signal";
+
+  Outcome again = RunFognav("sweep " + worlds + "/tiny_open.yaml --seeds 3 --jobs 1 --out " + out);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("sweep: 3 runs, " + std::to_string(finished.size()) +
+                              " finished before, " + std::to_string(3 - finished.size()) +
+                              " to run"),
+            std::string::npos)
+      << again.output;
+  EXPECT_NE(again.output.find("success     3/3 = 100.0 %"), std::string::npos) << again.output;
+  for (const auto& [name, written] : finished) {
+    EXPECT_EQ(std::filesystem::last_write_time(out + "/runs/" + name + "/report.json"), written)
+        << name;
+  }
 }
 
 // scripts/random_worlds.py (the rooms of robustness sweeps) writes files that `fognav validate`
