@@ -24,6 +24,7 @@
 #include "scenarios/internal/sweep_slurm.h"
 #include "scenarios/output.h"
 #include "scenarios/scenario.h"
+#include "viz/pages.h"
 
 extern char** environ;
 
@@ -122,32 +123,6 @@ std::string Cell(std::string text) {
   std::replace(text.begin(), text.end(), '\t', ' ');
   std::replace(text.begin(), text.end(), '\n', ' ');
   return text;
-}
-
-std::string Xml(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += (static_cast<unsigned char>(c) < 0x20 && c != '\n') ? ' ' : c;
-    }
-  }
-  return out;
 }
 
 nlohmann::json JsonNumber(double v) {
@@ -253,27 +228,30 @@ std::string IndexPage(const std::string& out_dir, const std::vector<SweepRow>& r
           "td,th{border:1px solid #ddd;padding:2px 8px;text-align:left}"
           "th{background:#f4f4f4;cursor:pointer}.bad{color:#c62828}.ok{color:#1a7f37}"
           "img{max-width:240px;max-height:120px}</style></head><body>\n"
-       << "<h1>fognav sweep</h1>\n<pre id=\"summary\">" << Xml(summary) << "</pre>\n"
+       << "<h1>fognav sweep</h1>\n<pre id=\"summary\">" << viz::EscapeMarkup(summary) << "</pre>\n"
        << "<p>Click a column's head to sort by it.</p>\n<table><thead><tr><th>run</th>";
-  for (const auto& s : shown) page << "<th>" << Xml(s.head) << "</th>";
+  for (const auto& s : shown) page << "<th>" << viz::EscapeMarkup(s.head) << "</th>";
   page << "<th>map</th></tr></thead><tbody>\n";
   for (const auto& r : rows) {
     const std::string link = "runs/" + r.run.name + "/report.html";
-    page << "<tr><td><a href=\"" << Xml(link) << "\">" << Xml(r.run.name) << "</a></td>";
+    page << "<tr><td><a href=\"" << viz::EscapeMarkup(link) << "\">"
+         << viz::EscapeMarkup(r.run.name) << "</a></td>";
     for (const auto& s : shown) {
       const std::string value = s.value(r) == "nan" ? "" : s.value(r);
       if (std::string(s.head) == "outcome") {
         const bool ok = value == "success" || value == "perceived";
-        page << "<td class=\"" << (ok ? "ok" : "bad") << "\">" << Xml(value) << "</td>";
+        page << "<td class=\"" << (ok ? "ok" : "bad") << "\">" << viz::EscapeMarkup(value)
+             << "</td>";
       } else {
-        page << "<td>" << Xml(value) << "</td>";
+        page << "<td>" << viz::EscapeMarkup(value) << "</td>";
       }
     }
     const std::string image = "runs/" + r.run.name + "/" + thumbnail;
     std::error_code error;
     if (fs::exists(fs::path(out_dir) / image, error)) {
-      page << "<td><a href=\"" << Xml(link) << "\"><img src=\"" << Xml(image) << "\" alt=\"map of "
-           << Xml(r.run.name) << "\"></a></td>";
+      page << "<td><a href=\"" << viz::EscapeMarkup(link) << "\"><img src=\""
+           << viz::EscapeMarkup(image) << "\" alt=\"map of " << viz::EscapeMarkup(r.run.name)
+           << "\"></a></td>";
     } else {
       page << "<td></td>";
     }
@@ -302,21 +280,21 @@ std::string JunitXml(const std::vector<SweepRow>& rows) {
       << "\">\n  <testsuite name=\"fognav sweep\" " << counts << " time=\"" << Fixed(time_s, 2)
       << "\">\n";
   for (const auto& r : rows) {
-    xml << "    <testcase classname=\"fognav.sweep\" name=\"" << Xml(r.run.name) << "\" file=\""
-        << Xml(r.run.scenario) << "\" time=\""
+    xml << "    <testcase classname=\"fognav.sweep\" name=\"" << viz::EscapeMarkup(r.run.name)
+        << "\" file=\"" << viz::EscapeMarkup(r.run.scenario) << "\" time=\""
         << (std::isfinite(r.wall_time_s) ? Fixed(r.wall_time_s, 2) : "0") << "\"";
     const std::string message = r.failure.empty() ? r.outcome : r.failure;
     const std::string text = message + (r.detail.empty() ? "" : ": " + r.detail);
     if (r.finished && r.exit_code == 0) {
       xml << "/>\n";
     } else if (r.finished) {
-      xml << ">\n      <failure type=\"" << Xml(r.outcome) << "\" message=\"" << Xml(text)
-          << "\"/>\n    </testcase>\n";
+      xml << ">\n      <failure type=\"" << viz::EscapeMarkup(r.outcome) << "\" message=\""
+          << viz::EscapeMarkup(text) << "\"/>\n    </testcase>\n";
     } else if (r.outcome == "not run") {
-      xml << ">\n      <skipped message=\"" << Xml(text) << "\"/>\n    </testcase>\n";
+      xml << ">\n      <skipped message=\"" << viz::EscapeMarkup(text) << "\"/>\n    </testcase>\n";
     } else {
-      xml << ">\n      <error type=\"exit " << r.exit_code << "\" message=\"" << Xml(text)
-          << "\"/>\n    </testcase>\n";
+      xml << ">\n      <error type=\"exit " << r.exit_code << "\" message=\""
+          << viz::EscapeMarkup(text) << "\"/>\n    </testcase>\n";
     }
   }
   xml << "  </testsuite>\n</testsuites>\n";

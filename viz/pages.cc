@@ -23,29 +23,6 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;  // the files' order of keys
 
-std::string Escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string Format(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof(text), format, value);
@@ -134,7 +111,7 @@ std::string FiguresTable(const json& report, const std::vector<std::string>& ski
   }
   std::string html = "<table class=\"figures\">\n";
   for (const auto& [key, value] : rows) {
-    html += "<tr><th>" + Escape(key) + "</th><td>" + Escape(value) + "</td></tr>\n";
+    html += "<tr><th>" + EscapeMarkup(key) + "</th><td>" + EscapeMarkup(value) + "</td></tr>\n";
   }
   return html + "</table>\n";
 }
@@ -150,16 +127,17 @@ img{image-rendering:pixelated;max-width:100%}img.frame{width:330px}img.window{wi
 
 std::string PageStart(const std::string& title) {
   return "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>" +
-         Escape(title) + "</title>\n<style>" + kStyle + "</style></head><body>\n";
+         EscapeMarkup(title) + "</title>\n<style>" + kStyle + "</style></head><body>\n";
 }
 
 // an image figure if the file exists in out_dir (the page must not hold broken images)
 std::string Figure(const std::string& out_dir, const std::string& file, const std::string& caption,
                    const std::string& img_class = "") {
   if (!fs::exists(fs::path(out_dir) / file)) return "";
-  return "<figure><a href=\"" + Escape(file) + "\"><img src=\"" + Escape(file) + "\" alt=\"" +
-         Escape(caption) + "\"" + (img_class.empty() ? "" : " class=\"" + img_class + "\"") +
-         "></a><figcaption>" + Escape(caption) + "</figcaption></figure>\n";
+  return "<figure><a href=\"" + EscapeMarkup(file) + "\"><img src=\"" + EscapeMarkup(file) +
+         "\" alt=\"" + EscapeMarkup(caption) + "\"" +
+         (img_class.empty() ? "" : " class=\"" + img_class + "\"") + "></a><figcaption>" +
+         EscapeMarkup(caption) + "</figcaption></figure>\n";
 }
 
 // The window's maps both pages show beside their plan: the ground truth, the FOG against it,
@@ -280,7 +258,7 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
     for (const auto& [y, name] : {std::pair{plan_y, &p.plan}, std::pair{decision_y, &p.decision}}) {
       svg << "<rect x=\"" << x_of(p.cycle) - cell / 2 << "\" y=\"" << y << "\" width=\""
           << std::max(cell, 0.5) << "\" height=\"" << strip_h << "\" fill=\"" << colours[*name]
-          << "\"><title>cycle " << p.cycle << ": " << Escape(*name) << "</title></rect>\n";
+          << "\"><title>cycle " << p.cycle << ": " << EscapeMarkup(*name) << "</title></rect>\n";
     }
   }
   // the failure's cycle
@@ -289,7 +267,7 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
     svg << "<line x1=\"" << x << "\" x2=\"" << x << "\" y1=\"" << plot_top << "\" y2=\""
         << decision_y + strip_h + 4 << "\" stroke=\"#c62828\" stroke-width=\"2\" "
         << "stroke-dasharray=\"4,2\"/><text x=\"" << x - 4 << "\" y=\"" << decision_y + strip_h + 18
-        << "\" text-anchor=\"end\" fill=\"#c62828\">" << Escape(failure) << " at cycle " << n
+        << "\" text-anchor=\"end\" fill=\"#c62828\">" << EscapeMarkup(failure) << " at cycle " << n
         << "</text>\n";
   }
   // legend
@@ -310,7 +288,7 @@ std::string TimelineSvg(const std::vector<CsvRow>& cycles, const std::vector<Csv
     }
     svg << "<rect x=\"" << lx << "\" y=\"" << ly - 10 << "\" width=\"12\" height=\"12\" fill=\""
         << colours[order[i]] << "\"/><text x=\"" << lx + 16 << "\" y=\"" << ly << "\">"
-        << Escape(order[i]) << "</text>\n";
+        << EscapeMarkup(order[i]) << "</text>\n";
     lx += 140;
   }
   svg << "</svg>\n";
@@ -327,7 +305,7 @@ std::string LastDecisionsTable(const std::vector<CsvRow>& cycles, size_t count) 
   const size_t first = cycles.size() > count ? cycles.size() - count : 0;
   for (size_t i = first; i < cycles.size(); ++i) {
     html += "<tr>";
-    for (const char* c : columns) html += "<td>" + Escape(Field(cycles[i], c)) + "</td>";
+    for (const char* c : columns) html += "<td>" + EscapeMarkup(Field(cycles[i], c)) + "</td>";
     html += "</tr>\n";
   }
   return html + "</table>\n";
@@ -368,13 +346,13 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
   const std::string outcome = success ? "success" : "failed";
 
   std::string html = PageStart("fognav: " + scenario + " " + outcome);
-  html += "<h1>" + Escape(scenario) + ": <span id=\"outcome\" class=\"" + (success ? "ok" : "bad") +
-          "\">" + outcome + "</span></h1>\n";
+  html += "<h1>" + EscapeMarkup(scenario) + ": <span id=\"outcome\" class=\"" +
+          (success ? "ok" : "bad") + "\">" + outcome + "</span></h1>\n";
   html += "<p>" +
           std::string(report.value("reached_goal", false) ? "Goal reached" : "Goal not reached") +
           Format(" (%.2f m from it at the end)", report.value("goal_distance", 0.0)) +
-          "; failure: <span id=\"failure\">" + Escape(failure.empty() ? "none" : failure) +
-          "</span>" + (detail.empty() ? "" : " (" + Escape(detail) + ")") +
+          "; failure: <span id=\"failure\">" + EscapeMarkup(failure.empty() ? "none" : failure) +
+          "</span>" + (detail.empty() ? "" : " (" + EscapeMarkup(detail) + ")") +
           Format("; %.0f cycles", last_cycle) + Format(", SPL %.3f. ", report.value("spl", 0.0)) +
           (success ? "Every expectation of the scenario held."
                    : "An expectation of the scenario failed.") +
@@ -396,8 +374,8 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
       "<h2>Timeline</h2>\n" + TimelineSvg(cycles, trajectory, start_W, goal_W, failure, last_cycle);
 
   if (!failure.empty()) {
-    html += "<h2>The failure: " + Escape(failure) +
-            (detail.empty() ? "" : " (" + Escape(detail) + ")") + "</h2>\n";
+    html += "<h2>The failure: " + EscapeMarkup(failure) +
+            (detail.empty() ? "" : " (" + EscapeMarkup(detail) + ")") + "</h2>\n";
     html += Figure(out_dir, "maps/final_plan.png",
                    "the believed FOG and the plan at cycle " + std::to_string(last_cycle) +
                        ", where the mission ended",
@@ -423,8 +401,8 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
     std::error_code error;
     fs::path video = fs::relative(fs::absolute(video_path), fs::absolute(dir), error);
     if (error || video.empty()) video = fs::absolute(video_path);
-    html += "<h2>Video</h2>\n<video controls width=\"960\" src=\"" + Escape(video.string()) +
-            "\"></video>\n<p class=\"note\"><a href=\"" + Escape(video.string()) +
+    html += "<h2>Video</h2>\n<video controls width=\"960\" src=\"" + EscapeMarkup(video.string()) +
+            "\"></video>\n<p class=\"note\"><a href=\"" + EscapeMarkup(video.string()) +
             "\">the video file</a> (browsers play .webm; open .avi or .mp4 in a video player if "
             "the browser cannot)</p>\n";
   }
@@ -437,13 +415,14 @@ void WritePerceivePage(const std::string& out_dir) {
   const json report = ReadJson((dir / "perception.json").string());
   const std::string scenario = report.value("scenario", "");
   std::string html = PageStart("fognav perceive: " + scenario);
-  html += "<h1>" + Escape(scenario) + ": perception from the start pose</h1>\n";
-  html += "<p>Depth: " + Escape(report.value("depth", "")) +
+  html += "<h1>" + EscapeMarkup(scenario) + ": perception from the start pose</h1>\n";
+  html += "<p>Depth: " + EscapeMarkup(report.value("depth", "")) +
           Format("; segmentation accuracy %.3f", report["segmentation"].value("accuracy", 0.0)) +
           Format(", coverage %.3f", report["segmentation"].value("coverage", 0.0)) +
           Format("; FOG traversability %.3f",
                  report.value("fog", json::object()).value("traversability", 0.0)) +
-          Format(", unsafe cells %.0f", report.value("fog", json::object()).value("unsafe_cells", 0.0)) +
+          Format(", unsafe cells %.0f",
+                 report.value("fog", json::object()).value("unsafe_cells", 0.0)) +
           Format(", six-type accuracy %.3f.", report.value("fog_accuracy", 0.0)) + "</p>\n";
   html +=
       "<p class=\"note\">Files: <a href=\"perception.json\">perception.json</a>, "
@@ -462,10 +441,10 @@ void WritePerceivePage(const std::string& out_dir) {
         "<h2>FOG confusion</h2>\n<p class=\"note\">Rows: the ground truth; columns: the "
         "estimate; observed cells.</p>\n<table>\n<tr><th></th>";
     for (auto it = confusion.begin(); it != confusion.end(); ++it)
-      html += "<th>" + Escape(it.key()) + "</th>";
+      html += "<th>" + EscapeMarkup(it.key()) + "</th>";
     html += "</tr>\n";
     for (auto row = confusion.begin(); row != confusion.end(); ++row) {
-      html += "<tr><th>" + Escape(row.key()) + "</th>";
+      html += "<tr><th>" + EscapeMarkup(row.key()) + "</th>";
       for (auto col = confusion.begin(); col != confusion.end(); ++col) {
         html += "<td>" + ValueText(row.value().value(col.key(), json(0))) + "</td>";
       }
@@ -500,6 +479,32 @@ void WritePerceivePage(const std::string& out_dir) {
   }
   html += "</table>\n</body></html>\n";
   WriteText((dir / "report.html").string(), html);
+}
+
+std::string EscapeMarkup(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += (static_cast<unsigned char>(c) < 0x20 && c != '\n') ? ' ' : c;
+    }
+  }
+  return out;
 }
 
 }  // namespace fognav::viz

@@ -14,6 +14,10 @@
 
 namespace fognav::viz {
 
+// `text` for HTML or XML text and attribute values: & < > " ' as entities, control characters
+// but the newline as spaces.
+std::string EscapeMarkup(const std::string& text);
+
 // Writes out_dir/report.html and out_dir/maps/mission.png (DrawMissionMap) for a mission whose
 // report.json, trajectory.csv and cycles.csv, frames/final_* and maps/ are in out_dir already.
 // The page: a title with the scenario, the outcome (element #outcome: "success" or "failed")
