@@ -177,6 +177,9 @@ struct PlannerParams {
   // standing footprint and of the cells the head reaches: a ceiling seen only at its edge (a
   // table top just above the eyes) may go on over floor cells the map holds as open.
   bool get_up_under_seen_headroom = true;
+  // Without it, the standing origin keeps this far from every tunnel cell: a ceiling seen from
+  // below ends short of its true edge where the crawling eyes could not look up at it, metres.
+  double unseen_headroom_clearance = 0.4;
 
   // The cycle's views look ahead, so a robot walking backward, side-stepping or crawling
   // backward moves where its eyes have not looked: such a move may not bring an unknown cell
@@ -184,6 +187,10 @@ struct PlannerParams {
   // may, as the robot looks ahead after each. Cells the standing robot has stood on
   // (Fog::walked) count as known: it came over them.
   bool blind_moves_stay_known = true;
+  // Crawling, the eyes are 0.24 m above the floor and tilted up for the ceiling: they do not
+  // show whether a block ahead leaves room for the body, so a forward crawl may not bring an
+  // unknown cell under the crawling footprint either. Beyond a table the robot gets up to look.
+  bool crawl_stays_known = true;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
   // below; factors are per metre and >= walk_factor keeps the heuristic admissible

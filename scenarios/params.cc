@@ -363,8 +363,12 @@ std::vector<ParamInfo> MakeTable() {
         &S::kneel_clear_reach);
     add("get_up_under_seen_headroom", kFlag, "get up only where the headroom has been seen",
         &S::get_up_under_seen_headroom);
+    add("unseen_headroom_clearance", kMetres,
+        "getting up under unseen headroom, this far from any tunnel cell, metres",
+        &S::unseen_headroom_clearance);
     add("blind_moves_stay_known", kFlag, "backward and side moves keep to known cells",
         &S::blind_moves_stay_known);
+    add("crawl_stays_known", kFlag, "forward crawls keep to known cells", &S::crawl_stays_known);
     add("walk_factor", kFactor, "cost per metre walking forward", &S::walk_factor);
     add("backward_factor", kFactor, "cost per metre walking backward", &S::backward_factor);
     add("sidestep_factor", kFactor, "cost per metre side-stepping", &S::sidestep_factor);

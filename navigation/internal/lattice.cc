@@ -369,10 +369,12 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   // o + step (relative to the old origin) outside the old one
   for (int q = 0; q < 2; ++q) {
     for (int k = 0; k < kNumHeadings; ++k) {
-      const CellStep back = kSteps[k], across = kSteps[(k + 4) % kNumHeadings];
-      const CellStep delta[3] = {{-back.dx, -back.dy}, {across.dx, across.dy},
-                                 {-across.dx, -across.dy}};
-      for (int b = 0; b < 3; ++b) {
+      const CellStep ahead = kSteps[k], across = kSteps[(k + 4) % kNumHeadings];
+      const CellStep delta[4] = {{-ahead.dx, -ahead.dy},
+                                 {across.dx, across.dy},
+                                 {-across.dx, -across.dy},
+                                 {ahead.dx, ahead.dy}};
+      for (int b = 0; b < 4; ++b) {
         std::vector<CellStep>& lead = blind_lead_[q][k][b];
         lead.clear();
         for (const CellStep& o : footprint_[q][k]) {
@@ -914,7 +916,11 @@ perception::Pose2 Lattice::PoseOf(int s) const {
 }
 
 bool Lattice::HeadroomSeen(int cell, int heading) const {
-  if (fog_.headroom_seen.empty() || !p_.get_up_under_seen_headroom) return true;
+  if (!p_.get_up_under_seen_headroom) {
+    const double clear = p_.unseen_headroom_clearance / fog_.window.resolution;
+    return tunnel_d2_[size_t(cell)] > clear * clear + kEps;
+  }
+  if (fog_.headroom_seen.empty()) return true;
   const perception::GridWindow& w = fog_.window;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   auto seen = [&](int nx, int ny) {
@@ -1090,7 +1096,7 @@ int Lattice::Successors(int s, Successor* out) {
   int n = 0;
 
   // a translation by heading step `dir` keeping heading k and the posture, on one level;
-  // `blind` (0..2, see blind_lead_) for the moves the eyes do not look along, else -1
+  // `blind` (0..3, see blind_lead_) for the moves the eyes do not look along, else -1
   auto translate = [&](int dir, int sign, double factor, Move move, int blind) {
     const int nx = ix + sign * kSteps[dir].dx, ny = iy + sign * kSteps[dir].dy;
     if (!w.Contains(nx, ny)) return;
@@ -1099,8 +1105,8 @@ int Lattice::Successors(int s, Successor* out) {
     const int t = StateIndex(nx, ny, k, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
-    if (blind >= 0 && p_.blind_moves_stay_known &&
-        BlindIntoUnknown(nx, ny, int(posture), k, blind)) {
+    const bool stay_known = blind == 3 ? p_.crawl_stays_known : p_.blind_moves_stay_known;
+    if (blind >= 0 && stay_known && BlindIntoUnknown(nx, ny, int(posture), k, blind)) {
       return;
     }
     const bool on_stairs =
@@ -1147,7 +1153,7 @@ int Lattice::Successors(int s, Successor* out) {
       }
     }
   } else {
-    translate(k, +1, p_.crawl_factor, Move::kCrawl, -1);
+    translate(k, +1, p_.crawl_factor, Move::kCrawl, 3);
     translate(k, -1, p_.crawl_factor * p_.backward_factor, Move::kCrawl, 0);
     turn(left, turn_angle_[k], p_.crawl_factor);
     turn(right, turn_angle_[right], p_.crawl_factor);

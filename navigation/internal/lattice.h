@@ -276,8 +276,9 @@ class Lattice {
   int body_reach_cells_ = 0;
   std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
   // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
-  // +/-, by heading k + 4), relative to the new origin, that the footprint before did not cover
-  std::vector<CellStep> blind_lead_[2][kNumHeadings][3];
+  // +/-, by heading k + 4, 3: forward), relative to the new origin, that the footprint before
+  // did not cover
+  std::vector<CellStep> blind_lead_[2][kNumHeadings][4];
   double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
   double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
   int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint

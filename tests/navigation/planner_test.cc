@@ -457,6 +457,49 @@ TEST(Planner, GetsUpOnlyWhereTheHeadroomIsSeen) {
   EXPECT_LT(get_up_x(without), 2.0) << Moves(without);
 }
 
+// Getting up where the headroom is unseen (get_up_under_seen_headroom off, the mission's last
+// resort), the standing origin keeps unseen_headroom_clearance from every tunnel cell: a table's
+// underside seen from below may end short of its edge.
+TEST(Planner, GetsUpUnderUnseenHeadroomClearOfTheTunnel) {
+  const Fog fog = CorridorWithTable();  // tunnel cells up to x = 2.0
+  PlannerParams p;
+  p.get_up_under_seen_headroom = false;
+  auto get_up_x = [](const PlanResult& r) {
+    for (size_t i = 1; i < r.path.size(); ++i) {
+      if (r.path[i - 1].posture == Posture::kCrawling && r.path[i].posture == Posture::kUpright) {
+        return r.path[i].pose_G.x;
+      }
+    }
+    return -1.0;
+  };
+  const PlanResult r = Plan(fog, {1.70, 1.22, 0.0}, {3.10, 1.22}, p, Posture::kCrawling);
+  ASSERT_EQ(r.status, PlanStatus::kOk) << NoPathReasonName(r.reason);
+  EXPECT_GE(get_up_x(r), 1.98 + p.unseen_headroom_clearance) << Moves(r);
+  ExpectFootprintsClear(fog, r, p);
+
+  p.unseen_headroom_clearance = 0.0;
+  const PlanResult near = Plan(fog, {1.70, 1.22, 0.0}, {3.10, 1.22}, p, Posture::kCrawling);
+  ASSERT_EQ(near.status, PlanStatus::kOk);
+  EXPECT_GT(get_up_x(near), 0.0);
+  EXPECT_LT(get_up_x(near), 1.98 + 0.4) << Moves(near);
+}
+
+// Crawling, the robot does not move forward onto cells it has not seen (crawl_stays_known):
+// a table whose far side is unseen, no headroom seen to get up, the goal beyond the unseen band.
+TEST(Planner, CrawlsForwardOnlyOverSeenCells) {
+  Fog fog = CorridorWithTable();
+  FillBox(&fog, 2.0, 0.6, 2.4, 1.8, CellType::kUnknown, -INFINITY);
+  fog.headroom_seen.assign(fog.type.size(), 0);
+  PlannerParams p;
+  const PlanResult kept = Plan(fog, {1.60, 1.22, 0.0}, {2.60, 1.22}, p, Posture::kCrawling);
+  EXPECT_FALSE(kept.status == PlanStatus::kOk && kept.reaches_goal) << Moves(kept);
+  p.crawl_stays_known = false;
+  const PlanResult blind = Plan(fog, {1.60, 1.22, 0.0}, {2.60, 1.22}, p, Posture::kCrawling);
+  ASSERT_EQ(blind.status, PlanStatus::kOk) << NoPathReasonName(blind.reason);
+  EXPECT_TRUE(blind.reaches_goal);
+  EXPECT_EQ(blind.path.back().posture, Posture::kCrawling);
+}
+
 // Also where no floor's headroom has been seen, as in a room with nothing above the eyes: the
 // crawl zone then spans all its floor, but the robot gets down only near a tunnel. Here a
 // corridor between two blocks that goes on unseen, so that no side-step may enter it: walking,
