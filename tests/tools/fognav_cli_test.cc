@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -529,6 +530,27 @@ TEST(FognavCli, SweepPerceiveScoresTheStartViews) {
   Outcome seeded = RunFognav("sweep " + worlds + "/tiny_open.yaml --perceive --seeds 2 --out " + out);
   EXPECT_EQ(seeded.exit_code, 2) << seeded.output;
   EXPECT_NE(seeded.output.find("--seeds"), std::string::npos) << seeded.output;
+}
+
+// --set KEY=V1,V2: one run per value, each with that override, which its report lists
+TEST(FognavCli, SweepSetRunsAGridOfParameterOverrides) {
+  const std::string worlds = TinyWorlds();
+  const std::string out =
+      (std::filesystem::temp_directory_path() / "fognav_cli_sweep_set").string();
+  std::filesystem::remove_all(out);
+  Outcome o = RunFognav("sweep " + worlds +
+                        "/tiny_open.yaml --set planner.sidestep_factor=1.4,1.7 --out " + out);
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  const auto results = ReadJson(out + "/results.json");
+  ASSERT_EQ(results["runs"].size(), 2u);
+  std::set<double> values;
+  for (const auto& run : results["runs"]) {
+    const std::string name = run["name"];
+    const auto report = ReadJson(out + "/runs/" + name + "/report.json");
+    ASSERT_EQ(report["params"].size(), 1u) << name;
+    values.insert(report["params"]["planner.sidestep_factor"].get<double>());
+  }
+  EXPECT_EQ(values, (std::set<double>{1.4, 1.7}));
 }
 
 // Ctrl-C on a sweep reaches its runs too (the terminal signals the process group): it ends with
