@@ -141,40 +141,41 @@ struct Column {
   std::string (*value)(const SweepRow&);
 };
 
+// the columns of every run, then those of `more`
+std::vector<Column> WithRunColumns(std::vector<Column> more) {
+  std::vector<Column> columns = {
+      {"name", [](const SweepRow& r) { return r.run.name; }},
+      {"scenario", [](const SweepRow& r) { return r.run.scenario; }},
+      {"seed", [](const SweepRow& r) { return r.run.seed < 0 ? "" : std::to_string(r.run.seed); }},
+      {"params", [](const SweepRow& r) { return Params(r.run); }},
+      {"exit", [](const SweepRow& r) { return std::to_string(r.exit_code); }},
+      {"outcome", [](const SweepRow& r) { return r.outcome; }}};
+  columns.insert(columns.end(), more.begin(), more.end());
+  return columns;
+}
+
 const std::vector<Column>& Columns(bool perceive) {
-  static const std::vector<Column> kMission = {
-      {"name", [](const SweepRow& r) { return r.run.name; }},
-      {"scenario", [](const SweepRow& r) { return r.run.scenario; }},
-      {"seed", [](const SweepRow& r) { return r.run.seed < 0 ? "" : std::to_string(r.run.seed); }},
-      {"params", [](const SweepRow& r) { return Params(r.run); }},
-      {"exit", [](const SweepRow& r) { return std::to_string(r.exit_code); }},
-      {"outcome", [](const SweepRow& r) { return r.outcome; }},
-      {"reached_goal", [](const SweepRow& r) { return std::string(r.reached_goal ? "1" : "0"); }},
-      {"failure", [](const SweepRow& r) { return r.failure; }},
-      {"cycles", [](const SweepRow& r) { return std::to_string(r.cycles); }},
-      {"collisions", [](const SweepRow& r) { return std::to_string(r.collisions); }},
-      {"spl", [](const SweepRow& r) { return Fixed(r.spl, 4); }},
-      {"optimal_path_length", [](const SweepRow& r) { return Fixed(r.optimal_path_length, 4); }},
-      {"traversability", [](const SweepRow& r) { return Fixed(r.traversability, 4); }},
-      {"unsafe_cells", [](const SweepRow& r) { return std::to_string(r.unsafe_cells); }},
-      {"wall_time_s", [](const SweepRow& r) { return Fixed(r.wall_time_s, 2); }},
-      {"detail", [](const SweepRow& r) { return r.detail; }}};
-  static const std::vector<Column> kPerceive = {
-      {"name", [](const SweepRow& r) { return r.run.name; }},
-      {"scenario", [](const SweepRow& r) { return r.run.scenario; }},
-      {"seed", [](const SweepRow& r) { return r.run.seed < 0 ? "" : std::to_string(r.run.seed); }},
-      {"params", [](const SweepRow& r) { return Params(r.run); }},
-      {"exit", [](const SweepRow& r) { return std::to_string(r.exit_code); }},
-      {"outcome", [](const SweepRow& r) { return r.outcome; }},
-      {"accuracy", [](const SweepRow& r) { return Fixed(r.accuracy, 4); }},
-      {"coverage", [](const SweepRow& r) { return Fixed(r.coverage, 4); }},
-      {"correct", [](const SweepRow& r) { return std::to_string(r.correct); }},
-      {"surfaces", [](const SweepRow& r) { return std::to_string(r.surfaces); }},
-      {"fog_accuracy", [](const SweepRow& r) { return Fixed(r.fog_accuracy, 4); }},
-      {"fog_cells", [](const SweepRow& r) { return std::to_string(r.fog_cells); }},
-      {"traversability", [](const SweepRow& r) { return Fixed(r.traversability, 4); }},
-      {"unsafe_cells", [](const SweepRow& r) { return std::to_string(r.unsafe_cells); }},
-      {"detail", [](const SweepRow& r) { return r.detail; }}};
+  static const std::vector<Column> kMission = WithRunColumns(
+      {{"reached_goal", [](const SweepRow& r) { return std::string(r.reached_goal ? "1" : "0"); }},
+       {"failure", [](const SweepRow& r) { return r.failure; }},
+       {"cycles", [](const SweepRow& r) { return std::to_string(r.cycles); }},
+       {"collisions", [](const SweepRow& r) { return std::to_string(r.collisions); }},
+       {"spl", [](const SweepRow& r) { return Fixed(r.spl, 4); }},
+       {"optimal_path_length", [](const SweepRow& r) { return Fixed(r.optimal_path_length, 4); }},
+       {"traversability", [](const SweepRow& r) { return Fixed(r.traversability, 4); }},
+       {"unsafe_cells", [](const SweepRow& r) { return std::to_string(r.unsafe_cells); }},
+       {"wall_time_s", [](const SweepRow& r) { return Fixed(r.wall_time_s, 2); }},
+       {"detail", [](const SweepRow& r) { return r.detail; }}});
+  static const std::vector<Column> kPerceive = WithRunColumns(
+      {{"accuracy", [](const SweepRow& r) { return Fixed(r.accuracy, 4); }},
+       {"coverage", [](const SweepRow& r) { return Fixed(r.coverage, 4); }},
+       {"correct", [](const SweepRow& r) { return std::to_string(r.correct); }},
+       {"surfaces", [](const SweepRow& r) { return std::to_string(r.surfaces); }},
+       {"fog_accuracy", [](const SweepRow& r) { return Fixed(r.fog_accuracy, 4); }},
+       {"fog_cells", [](const SweepRow& r) { return std::to_string(r.fog_cells); }},
+       {"traversability", [](const SweepRow& r) { return Fixed(r.traversability, 4); }},
+       {"unsafe_cells", [](const SweepRow& r) { return std::to_string(r.unsafe_cells); }},
+       {"detail", [](const SweepRow& r) { return r.detail; }}});
   return perceive ? kPerceive : kMission;
 }
 
