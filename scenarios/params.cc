@@ -22,7 +22,10 @@ struct Range {
   double min, max;
 };
 constexpr Range kShare{0, 1};         // a fraction or probability
+// a probability whose log-odds must be finite
+constexpr Range kOpenProbability{1e-6, 1 - 1e-6};
 constexpr Range kMetres{0, 10};       // a length in the robot's world
+constexpr Range kPositiveMetres{1e-6, 10};  // a length something divides by
 constexpr Range kAnyMetres{0, kInf};  // a length where +inf turns a limit off
 constexpr Range kAngle{0, M_PI};      // radians
 constexpr Range kFactor{0, 100};      // a cost factor, ratio or count of sigmas
@@ -72,7 +75,7 @@ void AddSegmentRows(const std::string& s, per::SegmentParams PerceptionParams::*
   add("trade_window", {1, 99}, "side of the window for trading points, pixels (odd)",
       &S::trade_window);
   t->back().rule = Odd;
-  add("sigma_min", kMetres, "floor on a line's sigma and a plane's rms in r_sigma, metres",
+  add("sigma_min", kPositiveMetres, "floor on a line's sigma and a plane's rms in r_sigma, metres",
       &S::sigma_min);
   add("side_tolerance", kMetres, "residuals below this count as on the line, metres",
       &S::side_tolerance);
@@ -192,10 +195,10 @@ std::vector<ParamInfo> MakeTable() {
     add("size_z", {4, 64}, "layers", &S::size_z);
     add("resolution", {0.01, 1}, "cell side, metres", &S::resolution);
     add("z_min", {-1, 1}, "bottom of layer 0 in the grid frame, metres", &S::z_min);
-    add("p_hit", kShare, "eq. (18): P(occupied) for the cell a ray ends in", &S::p_hit);
-    add("p_miss", kShare, "eq. (18): P(occupied) for a cell a ray crosses", &S::p_miss);
-    add("p_min", kShare, "lower clamp of a cell's probability", &S::p_min);
-    add("p_max", kShare, "upper clamp of a cell's probability", &S::p_max);
+    add("p_hit", kOpenProbability, "eq. (18): P(occupied) for the cell a ray ends in", &S::p_hit);
+    add("p_miss", kOpenProbability, "eq. (18): P(occupied) for a cell a ray crosses", &S::p_miss);
+    add("p_min", kOpenProbability, "lower clamp of a cell's probability", &S::p_min);
+    add("p_max", kOpenProbability, "upper clamp of a cell's probability", &S::p_max);
     add("one_ray_per_end_cell", kFlag, "trace one ray per end cell and frame",
         &S::one_ray_per_end_cell);
     add("min_hits_per_frame", {1, 1000}, "points that must end in a cell for a hit in a frame",
@@ -204,7 +207,8 @@ std::vector<ParamInfo> MakeTable() {
         &S::overrule_ratio);
     add("overrule_below", kMetres, "only cells below this height are overruled, metres",
         &S::overrule_below);
-    add("p_occ", kShare, "P_occ of eq. (19, 22, 23): a cell above it is occupied", &S::p_occ);
+    add("p_occ", kOpenProbability, "P_occ of eq. (19, 22, 23): a cell above it is occupied",
+        &S::p_occ);
   }
 
   // the floor height map (perception::FloorParams)

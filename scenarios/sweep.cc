@@ -23,6 +23,7 @@
 
 #include "scenarios/internal/sweep_slurm.h"
 #include "scenarios/output.h"
+#include "scenarios/params.h"
 #include "scenarios/scenario.h"
 #include "viz/pages.h"
 
@@ -451,14 +452,24 @@ std::vector<SweepRun> PlanSweep(const SweepOptions& options) {
     }
     if (!keys.insert(key).second) throw InputError("--set '" + set + "': " + key + " set twice");
     std::vector<std::string> values;
-    std::istringstream list(set.substr(equals + 1));
-    for (std::string value; std::getline(list, value, ',');) {
+    const std::string list = set.substr(equals + 1);
+    for (size_t begin = 0;;) {
+      const size_t comma = list.find(',', begin);
+      const std::string value = list.substr(begin, comma - begin);
       if (value.empty() || value.find_first_of("/ \t\n") != std::string::npos) {
         throw InputError("--set '" + set + "': a value is empty or has a '/' or a space");
       }
+      if (std::find(values.begin(), values.end(), value) != values.end()) {
+        throw InputError("--set '" + set + "': " + value + " given twice");
+      }
+      // the key and each value as fognav run --set takes them: a bad one fails here, not in
+      // every run
+      ParamOverrides checked;
+      ApplySetFlag(key + "=" + value, &checked);
       values.push_back(value);
+      if (comma == std::string::npos) break;
+      begin = comma + 1;
     }
-    if (values.empty()) throw InputError("--set '" + set + "': no value");
     std::vector<std::vector<std::string>> wider;
     for (const auto& point : grid) {
       for (const auto& value : values) {
@@ -509,7 +520,9 @@ SweepRow ReadRow(const SweepRun& run, const std::string& run_dir, bool perceive,
     row.detail = "interrupted";
     return row;
   }
-  if (!report.is_object()) {
+  // the page is the run's last file: a report without it is from a run killed just after it
+  std::error_code error;
+  if (!report.is_object() || !fs::exists(run_dir + "/report.html", error)) {
     row.outcome = exit_code < 0 ? "not run" : "error";
     if (exit_code >= 0) {
       const std::string last = FirstLine(run_dir + "/stderr.log");
@@ -633,8 +646,7 @@ void WriteSweepFiles(const std::string& out_dir, const std::vector<SweepRow>& ro
   WriteFileAtomically(out_dir + "/index.html", IndexPage(out_dir, rows, summary, perceive));
 }
 
-std::vector<std::string> CompareOutcomes(const std::vector<SweepRow>& rows,
-                                         const std::string& old_dir) {
+std::map<std::string, std::string> ReadOutcomes(const std::string& old_dir) {
   const std::string path = old_dir + "/results.tsv";
   std::ifstream in(path);
   if (!in) throw InputError("--compare: cannot read " + path);
@@ -657,6 +669,11 @@ std::vector<std::string> CompareOutcomes(const std::vector<SweepRow>& rows,
     for (std::string cell; std::getline(split, cell, '\t');) cells.push_back(cell);
     if (cells.size() > std::max(name_at, outcome_at)) old[cells[name_at]] = cells[outcome_at];
   }
+  return old;
+}
+
+std::vector<std::string> CompareOutcomes(const std::vector<SweepRow>& rows,
+                                         const std::map<std::string, std::string>& old) {
   std::vector<std::string> changes;
   for (const auto& r : rows) {
     const auto it = old.find(r.run.name);
@@ -684,9 +701,11 @@ int RunSweep(const SweepOptions& options) {
     }
   }
   const std::vector<SweepRun> plan = PlanSweep(options);
-  // the old results first, so a bad --compare stops the sweep before it runs
+  // the old results first: a bad --compare stops the sweep before it runs, and an old folder
+  // that is the output folder too is read before it is written
+  std::map<std::string, std::string> old;
+  if (!options.compare_dir.empty()) old = ReadOutcomes(options.compare_dir);
   std::vector<SweepRow> rows;
-  if (!options.compare_dir.empty()) CompareOutcomes(rows, options.compare_dir);
   MakeOutputFolder(options.out_dir + "/runs");
 
   // finished runs are kept; the others are to do
@@ -710,7 +729,7 @@ int RunSweep(const SweepOptions& options) {
   }
   std::cout << FormatSummary(rows, options.perceive);
   if (!options.compare_dir.empty()) {
-    const auto changes = CompareOutcomes(rows, options.compare_dir);
+    const auto changes = CompareOutcomes(rows, old);
     std::cout << "changed outcome: " << changes.size() << " runs\n";
     for (const auto& c : changes) std::cout << "  " << c << "\n";
   }

@@ -1,12 +1,13 @@
 // `fognav sweep`: many runs of the program (missions, or start views with --perceive), each a
 // process of its own on this machine or a task of a Slurm job array, gathered into one table
 // (results.tsv, results.json), a JUnit file, a summary and an index page. A run is finished
-// when its report is there (reports are written whole); a rerun of the same sweep keeps the
-// finished runs and redoes the others.
+// when its report and, written last, its report.html are there; a rerun of the same sweep keeps
+// the finished runs and redoes the others.
 #ifndef FOGNAV_SCENARIOS_SWEEP_H_
 #define FOGNAV_SCENARIOS_SWEEP_H_
 
 #include <atomic>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -48,7 +49,7 @@ struct SweepOptions {
 // One row of the results: a run and what it ended with.
 struct SweepRow {
   SweepRun run;
-  bool finished = false;  // its report is there (and the run was not interrupted)
+  bool finished = false;  // its report and page are there (and the run was not interrupted)
   int exit_code = -1;     // the program's: 0 or 1 from a report; else as it ended
   std::string outcome;    // success, a failure class, "error" or "not run"
   std::string failure;    // the report's failure ("" none), or the error
@@ -89,10 +90,12 @@ std::string FormatSummary(const std::vector<SweepRow>& rows, bool perceive);
 // Writes results.tsv, results.json, junit.xml and index.html into out_dir. Throws OutputError.
 void WriteSweepFiles(const std::string& out_dir, const std::vector<SweepRow>& rows, bool perceive);
 
-// The runs whose outcome differs from old_dir/results.tsv: "NAME: OLD -> NEW" lines. Throws
-// InputError naming a results file that cannot be read or has no name and outcome columns.
+// The outcome of each run in old_dir/results.tsv, by run name. Throws InputError if it cannot be
+// read or has no name and outcome columns.
+std::map<std::string, std::string> ReadOutcomes(const std::string& old_dir);
+// "name: old -> new" for each run in rows whose outcome differs from `old`'s.
 std::vector<std::string> CompareOutcomes(const std::vector<SweepRow>& rows,
-                                         const std::string& old_dir);
+                                         const std::map<std::string, std::string>& old);
 
 // Runs the sweep, prints its progress to stderr and its summary to stdout, writes its files.
 // Returns the exit code: 0 every run passed, 1 some run failed or could not run, 4 stopped

@@ -64,15 +64,16 @@ std::string SbatchScript(const SweepOptions& options, const std::vector<SweepRow
     << "#SBATCH --job-name=fognav-sweep\n"
     << "#SBATCH --array=0-" << tasks.size() - 1 << "\n"
     << "#SBATCH --ntasks=1\n#SBATCH --cpus-per-task=1\n"
-    << "#SBATCH --chdir=" << out << "\n"
-    << "#SBATCH --output=" << out << "/slurm/task_%a.log\n";
+    << "#SBATCH --chdir=" << Quote(out) << "\n"
+    << "#SBATCH --output=" << Quote(out + "/slurm/task_%a.log") << "\n";
   if (!options.slurm.partition.empty())
     s << "#SBATCH --partition=" << options.slurm.partition << "\n";
   if (!options.slurm.time.empty()) s << "#SBATCH --time=" << options.slurm.time << "\n";
   if (!options.slurm.mem.empty()) s << "#SBATCH --mem=" << options.slurm.mem << "\n";
   s << "\n# a run starts afresh in its folder; its exit code is written when it ends\n"
     << "run() {\n  dir=\"$1\"; shift\n  rm -rf \"$dir\" && mkdir -p \"$dir\" || return\n"
-    << "  \"$@\" > /dev/null 2> \"$dir/stderr.log\"\n  echo $? > \"$dir/exit_code\"\n}\n\n"
+    << "  \"$@\" > /dev/null 2> \"$dir/stderr.log\"\n"
+    << "  echo $? > \"$dir/exit_code.tmp\" && mv \"$dir/exit_code.tmp\" \"$dir/exit_code\"\n}\n\n"
     << "case \"$SLURM_ARRAY_TASK_ID\" in\n";
   for (size_t t = 0; t < tasks.size(); ++t) {
     s << "  " << t << ")\n";
@@ -128,15 +129,25 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
 
   // submit
   std::string output;
-  if (Capture("sbatch --parsable " + Quote(script) + " 2>&1", &output) != 0) {
+  if (Capture("sbatch --parsable " + Quote(script), &output) != 0) {
     throw std::runtime_error("sbatch " + script + " failed: " + output);
   }
-  const std::string job = output.substr(0, output.find_first_of(";\n"));
+  // --parsable prints "jobid[;cluster]" as its last line
+  std::string job;
+  std::istringstream submitted(output);
+  for (std::string line; std::getline(submitted, line);) {
+    if (!line.empty()) job = line.substr(0, line.find(';'));
+  }
+  if (job.empty() || job.find_first_not_of("0123456789") != std::string::npos) {
+    throw std::runtime_error("sbatch " + script + ": no job id in its output: " + output);
+  }
   std::cerr << "sweep: submitted Slurm job " << job << ", " << tasks.size() << " tasks of up to "
             << per_task << " runs (" << script << ")\n";
 
   // follow: squeue lists the tasks, ended ones too, for MinJobAge after they end
   std::map<int, std::string> states;
+  constexpr int kMaxFailedLooks = 5;
+  int failed_looks = 0;
   bool stopped = false;
   std::string last_line;
   bool all_written = false;
@@ -147,7 +158,14 @@ bool RunSlurm(const SweepOptions& options, const std::vector<size_t>& todo,
       break;
     }
     bool listed = false;
-    if (Capture("squeue -h -r -t all -j " + job + " -o '%K|%T' 2>/dev/null", &output) == 0) {
+    const int squeue =
+        Capture("squeue -h -r -t all -j " + job + " -o '%K|%T' 2>/dev/null", &output);
+    // Ctrl-C reaches squeue too: the stop is the sweep's, not the job's end
+    if (options.stop != nullptr && *options.stop) continue;
+    // the controller may be busy: only a few failures in a row end the following
+    failed_looks = squeue == 0 ? 0 : failed_looks + 1;
+    if (squeue != 0 && failed_looks < kMaxFailedLooks) listed = true;
+    if (squeue == 0) {
       const auto now = ParseTaskStates(output);
       listed = !now.empty();
       // squeue lists every task of the array from its submission until MinJobAge after it

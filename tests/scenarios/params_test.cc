@@ -232,7 +232,12 @@ INSTANTIATE_TEST_SUITE_P(
         BadParams{"params: {grid: {size_z: 65}}\n",
                   "course.yaml:9: params.grid.size_z: expected an integer from 4 to 64, got '65'"},
         BadParams{"params: {grid: {p_hit: 1.5}}\n",
-                  "course.yaml:9: params.grid.p_hit: expected a number from 0 to 1, got '1.5'"},
+                  "course.yaml:9: params.grid.p_hit: expected a number from 1e-06 to 0.999999, "
+                  "got '1.5'"},
+        // a certain hit would make infinite log-odds
+        BadParams{"params: {grid: {p_hit: 1}}\n",
+                  "course.yaml:9: params.grid.p_hit: expected a number from 1e-06 to 0.999999, "
+                  "got '1'"},
         BadParams{"params: {planner: {sidestep_factor: -1}}\n",
                   "course.yaml:9: params.planner.sidestep_factor: expected a number from 0 to "
                   "100, got '-1'"},
@@ -272,7 +277,7 @@ TEST(Params, BadSetNamesTheFlagTheKeyAndWhatIsWrong) {
   EXPECT_EQ(SetErrorOf("fog.infer_tops=yes"),
             "--set fog.infer_tops=yes: fog.infer_tops: expected true or false, got 'yes'");
   EXPECT_EQ(SetErrorOf("grid.p_hit=2"),
-            "--set grid.p_hit=2: grid.p_hit: expected a number from 0 to 1, got '2'");
+            "--set grid.p_hit=2: grid.p_hit: expected a number from 1e-06 to 0.999999, got '2'");
   EXPECT_EQ(SetErrorOf("planner.sidestep_factor=1.4"), "");
 }
 

@@ -92,11 +92,15 @@ TEST(SweepPlan, EachSetIsAnAxisOfAGridOfOverridesPassedToTheRuns) {
             (std::vector<std::string>{"run", dir + "/w.yaml", "--out", "d", "--quiet", "--seed",
                                       "1", "--set", "planner.sidestep_factor=1.6", "--set",
                                       "fog.h_floor=0.02"}));
-  for (const std::string bad : {"planner.x", "=1", "Planner.x=1", "a.b=1,,2", "a.b=../x"}) {
+  // each key and value as fognav run --set takes them, each value once, none empty
+  for (const std::string bad :
+       {"planner.x", "=1", "Planner.x=1", "planner.sidestep_factor=1,,2",
+        "planner.sidestep_factor=../x", "planner.nope=1", "planner.sidestep_factor=fast",
+        "planner.sidestep_factor=1,1", "planner.sidestep_factor=1,2,"}) {
     options.sets = {bad};
     EXPECT_THROW(PlanSweep(options), InputError) << bad;
   }
-  options.sets = {"a.b=1", "a.b=2"};
+  options.sets = {"planner.walk_factor=1", "planner.walk_factor=2"};
   EXPECT_THROW(PlanSweep(options), InputError);
 }
 
@@ -125,7 +129,7 @@ TEST(SweepPlan, ArgumentsThatMatchNothingOrShareANameAreErrorsNamingThem) {
   }
 }
 
-TEST(SweepRows, AReportMakesARowAndAnInterruptedOrMissingOneDoesNot) {
+TEST(SweepRows, AReportAndItsPageMakeARowAndAnInterruptedOrMissingOneDoesNot) {
   const std::string dir = Folder("rows");
   const SweepRun run{"w", "w.yaml", 3, {}};
   Write(dir + "/done/report.json",
@@ -133,6 +137,9 @@ TEST(SweepRows, AReportMakesARowAndAnInterruptedOrMissingOneDoesNot) {
             "failure_detail": "hit box", "cycles": 12, "collisions": 2, "spl": null,
             "optimal_path_length": 2.5, "wall_time_s": 4.25,
             "fog": {"traversability": 0.75, "unsafe_cells": 7}})");
+  // the page comes last: a report without it is from a run killed just after writing it
+  EXPECT_FALSE(ReadRow(run, dir + "/done", false, -1).finished);
+  Write(dir + "/done/report.html", "<!DOCTYPE html>");
   const SweepRow done = ReadRow(run, dir + "/done", false, -1);
   EXPECT_TRUE(done.finished);
   EXPECT_EQ(done.exit_code, 1);
@@ -214,11 +221,11 @@ TEST(SweepFiles, TableJunitIndexAndComparison) {
   std::vector<SweepRow> later = rows;
   later[0] = Row("a", 1, "collision");
   later[1] = Row("b", 0, "success");
-  EXPECT_EQ(CompareOutcomes(later, dir),
+  EXPECT_EQ(CompareOutcomes(later, ReadOutcomes(dir)),
             (std::vector<std::string>{"a: success -> collision", "b: timeout -> success"}));
   Write(dir + "/old/results.tsv", "world\tresult\n");
   try {
-    CompareOutcomes(later, dir + "/old");
+    ReadOutcomes(dir + "/old");
     FAIL() << "a results file without name and outcome";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(dir + "/old/results.tsv:1: expected"), std::string::npos)
