@@ -7,6 +7,8 @@
 # is saved in build-fuzz/findings/ and printed in base64. What the fuzzers found new stays in
 # build-fuzz/corpus/, so a later run goes on from there.
 # Usage: scripts/fuzz.sh [SECONDS [FUZZER...]]   (FUZZER: scenario segmentation stereo map_update)
+# FUZZ_SEED=N fixes libFuzzer's random seed (CI: the same inputs for the same commit, so a run
+# fails or passes alike every time); unset, each run draws its own.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${1:-60}"
@@ -31,6 +33,7 @@ for name in "${fuzzers[@]}"; do
   # -timeout: an input that takes longer is a finding (a hang); the first folder takes new inputs
   if ASAN_OPTIONS=detect_leaks=1 "$out/bin/${name}_fuzz" -max_total_time="$seconds" \
       -timeout=25 -print_final_stats=1 -artifact_prefix="$out/findings/$name-" \
+      ${FUZZ_SEED:+-seed="$FUZZ_SEED"} \
       "$out/corpus/$name" "$out/seeds/$name" > "$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     echo "fuzz: $name: ${runs:-?} executions, no finding"
