@@ -72,124 +72,58 @@ inline constexpr int kNumHeadings = 16;
 // it; a tread the map holds as fewer than three cells is never stood on, and stepped over only
 // if the step over it fits in max_step_length (with the defaults it never does: no path).
 struct PlannerParams {
-  // robot body, metres
+  // robot body, metres (the accounts of the values: docs/params.md, "Planner")
   double shoulder_width = 0.26;  // upright extent across the heading
   double depth = 0.12;           // upright extent along the heading (feet and torso)
   double crawl_length = 0.50;    // crawling extent along the heading (toes to head)
   double crawl_width = 0.26;     // crawling extent across the heading
   double crawl_offset = 0.10;    // centre of the crawling extent ahead of the robot's origin
   double margin = 0.015;         // safety margin added on every side of both footprints
-  // Standing, the floor under the footprint grown by only this much must lie on the origin's
-  // level; in the outer ring up to `margin` a tread's (up to h_stairs off) may lie too, but no
-  // higher or lower floor (a block's top, a drop). With the full margin the footprint's cells
-  // at the lattice's 26.6 degree headings span 0.16 m across a riser turned a little from
-  // them, more than a step reaches, and stairs turned by 20-35 degrees had no level pose
-  // within a step of each other.
+  // standing, the footprint grown by this much holds only the origin's level; the ring beyond,
+  // up to `margin`, may hold a tread (up to h_stairs off) too
   double level_margin = 0.01;
-  // Only the soles stand on the floor: the level test above holds across this width, not the
-  // shoulders'; under the rest of the footprint a tread's height (up to h_stairs off) may lie,
-  // as in the ring. The shipped humanoid's soles span 0.154 m (centres 0.09 m apart, 0.064 m
-  // wide); 2.3 cm more on each side, since a 4 cm cell whose centre lies on the lower floor may
-  // hold the last 2 cm of a riser (a riser turned by 12 degrees met a sole's front corner with
-  // 0.16). As wide as the shoulders, the footprint spans 0.28 m across a riser that, turned 9
-  // degrees from a lattice heading, lies 4.5 cm further ahead at one side than at the other:
-  // stairs turned by 17.5 or 72.5 degrees had no two level poses within a step.
+  // width across which the soles stand level; beyond it a tread's height may lie, as in the ring
   double stance_width = 0.20;
-  // Standing, the body reaches further than the soles: the knees come forward as a foot lifts
-  // (the shipped humanoid, measured over side-steps and turns in tests/sim: from 0.055 m
-  // behind its origin to 0.09 m ahead). A move that ends with an obstacle or tunnel cell, or a
-  // floor more than h_stairs above the origin's, under this rectangle grown by `margin` but
-  // outside the soles' footprint costs body_touch_cost more: the robot keeps its knees clear
-  // where the map leaves room, and still passes where the map holds a passage a cell
-  // narrower than the body (a 0.22 m gap whose blocks a noisy view widened). Across, the
-  // body is the shoulders' width: the arms swing out to 0.152 m, 7 mm past the shoulders'
-  // margin, but a wider rectangle on 4 cm cells would take 9 cells instead of 7 and close the
-  // 0.34 m passages the robot walks through.
+  // the knees' reach behind and ahead of the standing origin: an obstacle, tunnel or high floor
+  // there, outside the soles' footprint, costs body_touch_cost
   double body_back = 0.055;
   double body_front = 0.09;
-  // Across, the hands reach this far beside the origin (the arms swing out in side-steps and
-  // with the pelvis's sway; measured in tests/sim): the body rectangle is as wide as that plus
-  // `margin`, so the robot keeps a hand's clearance from a block where the map leaves room (on
-  // the footprint's cells alone a block may stand 0.14 m beside the origin, 12 mm inside the
-  // hands' reach: a slalom moved by 1-2 cm put a hand on a block in 3 of 4 copies)
+  // the hands' reach beside the origin: the body rectangle's half width less `margin`
   double arm_reach = 0.152;
-  // An unknown cell within hidden_reach of a seen floor, stairs or border cell whose height
-  // lies more than hand_low above the origin's floor counts against the body rectangle as that
-  // top would: the eyes saw the solid from one side only, and its far face or hidden corner may
-  // lie there (with 60-degree views a hand met the unseen end of a wall it walked round). The
-  // shipped humanoid's hands hang with their lowest point 0.233 m above the soles; lower tops
-  // (a 15 cm ottoman) pass under them. Before and behind the legs (the body rectangle within
-  // the stance's width grown by margin) any top more than h_stairs high counts so: a robot
-  // turning round the end of a 0.175 m block whose last 4-10 cm its eyes had never seen (too
-  // near, beside the feet, once there) put a knee on it in 3 of 6 shifted copies of a room.
-  // A border cell on the low side of a top above hand_low counts so too beside the legs:
-  // stereo may end a top a cell short (a hand met the corner leg of a 0.28 m table whose top
-  // the map ended 4 cm early, the cells beyond typed border at floor height). Not before and
-  // behind the legs: every side-step through the course's 0.22 m gap would pay for it. Such a
-  // cell is only a maybe, so it costs edge_touch_cost, not body_touch_cost: enough to keep a
-  // cell further off where the way is as short, too little to turn the robot from a narrow
-  // way (at 0.5 the noisy_gap mission turned back from its gap and gave up).
+  // tops higher than this above the origin's floor reach the hands: an unknown cell within
+  // hidden_reach of such a top counts as the top (edge_touch_cost beside the legs)
   double hand_low = 0.21;
   double hidden_reach = 0.08;
   double body_touch_cost = 0.5;  // metres-equivalent per move
   double edge_touch_cost = 0.1;  // metres-equivalent per move
-  // how far the standing robot's head reaches from its origin (looking down, the head box tilts
-  // forward); no tunnel cell's centre may lie within head_reach + margin of a standing robot's
-  // origin, so it gets down before its head meets the underside, and up only once clear of it
+  // the standing head's reach from the origin: no tunnel cell's centre within it (plus margin)
   double head_reach = 0.12;
-  // Nor may an obstacle or floor cell within that reach rise more than head_low above the floor
-  // under the origin (the tilted head's lowest edge; a table top below the eyes, a tall block)
+  // nor an obstacle or floor within it higher than this above the origin's floor
   double head_low = 0.40;
 
   // terrain limits (paper Section 6), metres
   double h_floor = 0.015;   // larger floor height changes between neighbouring cells are steps
   double h_stairs = 0.05;   // largest step the robot climbs; larger changes are never crossed
-  // longest step up or down, from standing pose to standing pose (the controller's
-  // max_climb_forward), metres
+  // longest step up or down, pose to pose (the controller's max_climb_forward), metres
   double max_step_length = 0.16;
-  // a step up or down may end this far beside its heading (the lead foot steps aside as it
-  // climbs; sim::StepLimits::max_climb_sideways), metres
+  // how far beside its heading a step up or down may end (max_climb_sideways), metres
   double max_step_sideways = 0.03;
-  // a step up or down is taken facing it: the heading may differ from the direction of the
-  // floor's height gradient there by at most this angle, radians
+  // largest angle between the heading and the floor's height gradient on a step, radians
   double max_stairs_heading_error = 0.35;
-  // floor and unknown cells whose centre is within this distance of a tunnel cell's centre
-  // allow crawling (the paper's "enlarged area" around a tunnel; unknown ones at the unknown
-  // penalty, as the robot may lose sight of the floor under itself), metres. With
-  // get_up_under_seen_headroom, so do cells within it of floor whose headroom is unseen, but
-  // the robot gets down only within it of a tunnel cell: in a room with nothing above the eyes
-  // no floor's headroom is seen, and a robot that got down in the open to pass a narrow way
-  // crawled with its eyes at the floor, whose stereo then walled it in.
+  // floor and unknown cells this near a tunnel cell (or, without seen headroom, floor) allow
+  // crawling; getting down only this near a tunnel cell, metres
   double crawl_zone_radius = 0.8;
-  // Getting down moves the robot's origin this far forward along its heading (the crawling
-  // origin is at the knees, ahead of the feet; the shipped controller's KneelOffset()), getting
-  // up as far back; on the lattice the nearest whole number of steps of the heading, metres.
-  // Both happen in the open: no tunnel cell under the crawling footprint up to
-  // kneel_clear_reach ahead of the standing origin, so the head is down before it comes under a
-  // ceiling and up only once clear of it.
+  // how far getting down moves the origin forward (getting up, back), metres
   double kneel_offset = 0.178;
-  // While it gets down or up, the body stays below h_tunnel more than this far ahead of the
-  // standing origin (the shipped controller reaches 0.46 m high up to 0.32 m ahead and falls
-  // below 0.30 m by 0.46 m): tunnel cells under the crawling footprint beyond it do not count
-  // against getting down or up "in the open", metres along the heading.
+  // getting down or up, the body is below a ceiling beyond this far ahead, metres
   double kneel_clear_reach = 0.46;
-  // Getting up only where the FOG has seen the headroom (perception::Fog::headroom_seen) of the
-  // standing footprint and of the cells the head reaches: a ceiling seen only at its edge (a
-  // table top just above the eyes) may go on over floor cells the map holds as open.
+  // get up only where the headroom of the standing body has been seen (Fog::headroom_seen)
   bool get_up_under_seen_headroom = true;
-  // Without it, the standing origin keeps this far from every tunnel cell: a ceiling seen from
-  // below ends short of its true edge where the crawling eyes could not look up at it, metres.
+  // without it, the standing origin keeps this far from every tunnel cell, metres
   double unseen_headroom_clearance = 0.4;
-
-  // The cycle's views look ahead, so a robot walking backward, side-stepping or crawling
-  // backward moves where its eyes have not looked: such a move may not bring an unknown cell
-  // (or one beyond the window) under the footprint that it did not cover before. Forward moves
-  // may, as the robot looks ahead after each. Cells the standing robot has stood on
-  // (Fog::walked) count as known: it came over them.
+  // backward and side moves may not bring an unseen cell under the footprint
   bool blind_moves_stay_known = true;
-  // Crawling, the eyes are 0.24 m above the floor and tilted up for the ceiling: they do not
-  // show whether a block ahead leaves room for the body, so a forward crawl may not bring an
-  // unknown cell under the crawling footprint either. Beyond a table the robot gets up to look.
+  // nor may forward crawls
   bool crawl_stays_known = true;
 
   // costs: a translation costs its length times its factor plus the clearance and unknown costs
@@ -207,10 +141,8 @@ struct PlannerParams {
 
   // clearance cost, added per metre: clearance_weight * min(h, clearance_height_cap) /
   // clearance_height_ref * max(0, 1 - d / clearance_radius) for the worst obstacle cell at
-  // centre distance d whose top is h above the neighbouring floor, so the robot keeps further
-  // from tall obstacles than from low ones when it has room; the upper edge of a drop (a border
-  // cell, e.g. the rim of a box whose top the map holds as floor) counts as an obstacle as high
-  // as the drop is deep
+  // centre distance d whose top is h above the neighbouring floor (a drop's upper edge counts
+  // as an obstacle as high as the drop is deep)
   double clearance_weight = 1.0;
   double clearance_radius = 0.6;      // metres
   double clearance_height_ref = 0.2;  // metres
@@ -218,25 +150,11 @@ struct PlannerParams {
 
   // goal and start
   double goal_tolerance = 0.1;  // a pose whose cell centre is this close to the goal reaches it
-  // A goal outside the map window is approached by planning to the cells within exit_band of
-  // the window's sides beyond which it lies, each ending the path at exit_factor times its
-  // straight-line distance to the goal; PlanToward ends at any reachable state so, and so
-  // does Plan where the window shows no way to those cells yet. A plan for a goal outside the
-  // window that may end anywhere ends at the wall nearest the goal, and the robot, whose
-  // window moves with it, takes turns between that wall and the way round it. The factor is
-  // high since the window forgets what it leaves: at 1.5 the robot went back to the edge
-  // behind which the goal lay beyond a wall it had just walked along (long_wall).
+  // a goal outside the window: a path may end within exit_band of the window's side toward it,
+  // at exit_factor times its straight-line distance to the goal
   double exit_factor = 8.0;
-  // About as far as the crawling footprint reaches ahead of its origin (crawl_offset +
-  // crawl_length / 2 + margin): a robot may not crawl beyond the window, so where the window's
-  // edge cuts a table the way out ends before it; and the outermost cells often lie in a
-  // wall's unseen shadow. With the outermost cells alone, table_in_divider ended in
-  // no_progress and the doorway world put a forearm on the partition. Metres.
-  double exit_band = 0.4;
-  // if the start pose itself is not allowed, the search starts from the allowed poses whose
-  // cell centre is this close to the start (the robot shuffles free: a side-step standing, a
-  // crawl crawling, a turn in place, a crawl move where the posture changes, close to where
-  // the change puts the origin: kneel_offset back getting up, forward getting down); metres
+  double exit_band = 0.4;  // metres
+  // a start pose not allowed: the search starts from allowed poses this near it, metres
   double start_escape_radius = 0.08;
 };
 
