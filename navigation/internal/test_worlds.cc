@@ -37,6 +37,19 @@ void FillBox(Fog* fog, double x0, double y0, double x1, double y1, CellType type
   }
 }
 
+Fog CorridorWithTable() {
+  Fog fog = FlatFog(80, 60, 0.04);
+  FillBox(&fog, 0.0, 0.0, 3.2, 0.6, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
+  FillBox(&fog, 1.4, 0.6, 2.0, 1.8, CellType::kTunnel, 0.0f);
+  for (double x : {1.4, 1.96}) {
+    for (double y : {0.6, 1.76}) {
+      FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
+    }
+  }
+  return fog;
+}
+
 void ClassifyFloorChanges(Fog* fog, double h_floor, double h_stairs) {
   const perception::GridWindow& w = fog->window;
   auto floorish = [](CellType t) {

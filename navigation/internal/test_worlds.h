@@ -26,6 +26,10 @@ void FillBox(perception::Fog* fog, double x0, double y0, double x1, double y1,
 // those types.
 void ClassifyFloorChanges(perception::Fog* fog, double h_floor, double h_stairs);
 
+// A 3.2 m x 2.4 m corridor of 4 cm cells (walls 0.5 m high at y < 0.6 and y >= 1.8) crossed
+// by a table at x in [1.4, 2.0): tunnel cells with four 0.56 m corner legs.
+perception::Fog CorridorWithTable();
+
 // A FOG resembling the paper's course on a 100 x 100 window of 4 cm (x in [-0.12, 3.88),
 // y in [-2, 2)): a 1.4 m corridor between walls with unknown space behind them; an 8 cm and a
 // 20 cm block to walk between; stairs of 3, 6 and 3 cm across the corridor; a row of obstacles

@@ -14,6 +14,7 @@ namespace fognav::navigation {
 namespace {
 
 using internal::ClassifyFloorChanges;
+using internal::CorridorWithTable;
 using internal::FillBox;
 using internal::FlatFog;
 using perception::CellType;
@@ -377,18 +378,6 @@ TEST(Planner, NoPathThroughAGapNarrowerThanTheDepth) {
     EXPECT_EQ(r.status, PlanStatus::kNoPath);
     EXPECT_EQ(r.reason, NoPathReason::kGoalEnclosed);
   }
-}
-
-// A corridor (walls at y < 0.6 and y >= 1.8) crossed by a table at x in [1.4, 2.0).
-Fog CorridorWithTable() {
-  Fog fog = FlatFog(80, 60, 0.04);  // 3.2 m x 2.4 m
-  FillBox(&fog, 0.0, 0.0, 3.2, 0.6, CellType::kObstacle, 0.5f);
-  FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
-  FillBox(&fog, 1.4, 0.6, 2.0, 1.8, CellType::kTunnel, 0.0f);
-  for (double x : {1.4, 1.96}) {
-    for (double y : {0.6, 1.76}) FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
-  }
-  return fog;
 }
 
 TEST(Planner, CrawlsUnderATableAcrossACorridor) {

@@ -14,6 +14,7 @@ using navigation::Move;
 using navigation::PlanResult;
 using navigation::PlanStatus;
 using navigation::Posture;
+using navigation::internal::CorridorWithTable;
 using navigation::internal::FillBox;
 using navigation::internal::FlatFog;
 using perception::CellType;
@@ -23,19 +24,6 @@ using perception::Rgb;
 using perception::RgbImage;
 
 bool Same(const Rgb& a, const Rgb& b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
-
-// A corridor (walls at y < 0.6 and y >= 1.8) crossed by a table at x in [1.4, 2.0).
-Fog CorridorWithTable() {
-  Fog fog = FlatFog(80, 60, 0.04);  // 3.2 m x 2.4 m
-  FillBox(&fog, 0.0, 0.0, 3.2, 0.6, CellType::kObstacle, 0.5f);
-  FillBox(&fog, 0.0, 1.8, 3.2, 2.4, CellType::kObstacle, 0.5f);
-  FillBox(&fog, 1.4, 0.6, 2.0, 1.8, CellType::kTunnel, 0.0f);
-  for (double x : {1.4, 1.96}) {
-    for (double y : {0.6, 1.76})
-      FillBox(&fog, x, y, x + 0.04, y + 0.04, CellType::kObstacle, 0.56f);
-  }
-  return fog;
-}
 
 TEST(FogPicture, OneHeightIsOneGreyInEveryPicture) {
   // two maps whose heights span different ranges: the 10 cm cell is the same grey in both
