@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "geometry/pose2.h"
+
 namespace fognav::perception {
 
 // A row-major image; pixel (u, v) is column u, row v.
@@ -64,10 +66,7 @@ struct PointImage {
   static bool Valid(const Eigen::Vector3f& p) { return p.allFinite(); }
 };
 
-// A planar pose: position (x, y) in metres and heading yaw in radians.
-struct Pose2 {
-  double x = 0, y = 0, yaw = 0;
-};
+using fognav::Pose2;
 
 // The planar pose as a rigid transform, its origin lifted to height z (metres).
 inline Eigen::Isometry3d Planar(const Pose2& p, double z = 0) {

@@ -178,8 +178,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   const sim::Humanoid& humanoid = controller.humanoid();
   const mjModel* m = world.model();
   mjData* d = world.data();
-  const sim::Pose2 start{scenario.start.x, scenario.start.y, scenario.start.yaw};
-  controller.Reset(start, 0.0, m, d);
+  controller.Reset(scenario.start, 0.0, m, d);
   sim::Renderer renderer(m);
 
   perception::MapState maps;
@@ -192,8 +191,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
     controller.MoveHead(sweep[i]);
     controller.RunUntilIdle(m, d);
     // the robot believes where odometry says; the camera and body from its joint angles
-    const sim::Pose2 believed = controller.believed_pose();
-    const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
+    const Pose2 robot_G = controller.believed_pose();
     StereoView view = RenderStereo(&renderer, world,
                                    sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft),
                                    scenario.sensor);
@@ -224,8 +222,7 @@ std::string RunPerceive(const Scenario& scenario, const std::string& out_dir, bo
   }
 
   // maps against the ground truth of the world
-  const sim::Pose2 believed = controller.believed_pose();
-  const perception::Pose2 robot_G{believed.x, believed.y, believed.yaw};
+  const Pose2 robot_G = controller.believed_pose();
   perception::Fog fog = perception::ComputeFog(params.map, maps);
   perception::Fog truth = TruthFog(scenario, fog.window, params.map.fog);
   const perception::FogScore fog_score = perception::ScoreFog(fog, truth, params.map.fog);

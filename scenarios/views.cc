@@ -38,7 +38,7 @@ perception::CameraIntrinsics HeadIntrinsics(const SensorSettings& sensor) {
 Eigen::Isometry3d PlaceRobot(sim::World* world, const perception::Pose2& pose) {
   // the standing posture a mission starts from (throws SimError if there is no humanoid)
   sim::Controller controller(world->model());
-  controller.Reset({pose.x, pose.y, pose.yaw}, 0.0, world->model(), world->data());
+  controller.Reset(pose, 0.0, world->model(), world->data());
   return sim::HeadCameraPoseInWorld(controller.humanoid(), world->data(), sim::Eye::kLeft);
 }
 

@@ -266,14 +266,14 @@ void Controller::Crawl(double dx, double dyaw) {
 
 namespace {
 
-Posture StandingOver(const Humanoid& h, const ControllerParams& params,
+JointPosture StandingOver(const Humanoid& h, const ControllerParams& params,
                      const std::array<FootPlacement, 2>& feet) {
   const GroundFrame f = FeetFrame(feet);
   const Eigen::Vector2d p_xy(f.x, f.y);
   const internal::LegGeometry& leg = h.leg(Side::kLeft);
   double z = f.z + leg.ankle_height + params.hip_height - leg.p_BH.z();
   z = std::min(z, internal::MaxBaseHeight(h, feet, p_xy, f.yaw, params.max_leg));
-  Posture posture;
+  JointPosture posture;
   internal::SetStandingArms(&posture);
   internal::SolveStance(h, feet, p_xy, z, f.yaw, &posture);
   return posture;
@@ -281,16 +281,16 @@ Posture StandingOver(const Humanoid& h, const ControllerParams& params,
 
 }  // namespace
 
-Posture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
+JointPosture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
                           const ControllerParams& params) {
   return StandingOver(h, params, FeetAt({pose.x, pose.y, pose.yaw, surface_z}, params.stance_width));
 }
 
-Posture Controller::StandingPosture(const std::array<FootPlacement, 2>& feet) const {
+JointPosture Controller::StandingPosture(const std::array<FootPlacement, 2>& feet) const {
   return StandingOver(humanoid_, params_, feet);
 }
 
-Posture Controller::StepPosture(const Segment& seg, double u) const {
+JointPosture Controller::StepPosture(const Segment& seg, double u) const {
   const double half_ds = 0.5 * params_.double_support;
   std::array<FootPlacement, 2> feet = seg.feet_from;
   const int sw = seg.swing;
@@ -322,13 +322,13 @@ Posture Controller::StepPosture(const Segment& seg, double u) const {
   double z = z_a + s * (z_b - z_a);
   z = std::min(z, internal::MaxBaseHeight(humanoid_, feet, p_xy, yaw, params_.max_leg));
 
-  Posture posture;
+  JointPosture posture;
   internal::SetStandingArms(&posture);
   internal::SolveStance(humanoid_, feet, p_xy, z, yaw, &posture);
   return posture;
 }
 
-Posture Controller::CrawlPostureAt(const GroundFrame& frame) const {
+JointPosture Controller::CrawlPostureAt(const GroundFrame& frame) const {
   const internal::CrawlShape& c = params_.crawl;
   std::array<Eigen::Vector3d, 2> knees, hands;
   for (int s = 0; s < 2; ++s) {
@@ -339,7 +339,7 @@ Posture Controller::CrawlPostureAt(const GroundFrame& frame) const {
   return internal::CrawlPosture(humanoid_, c, frame, knees, hands, {true, true});
 }
 
-Posture Controller::CrawlCyclePosture(const Segment& seg, double u) const {
+JointPosture Controller::CrawlCyclePosture(const Segment& seg, double u) const {
   const internal::CrawlShape& c = params_.crawl;
   const GroundFrame& a = seg.crawl_from;
   const GroundFrame& b = seg.crawl_to;
@@ -371,7 +371,7 @@ Eigen::Isometry3d TiptoeSole(const Eigen::Vector3d& p_toe, double yaw, double th
   return X * Eigen::Translation3d(-half_length, 0, 0);
 }
 
-void SolveLegs(const Humanoid& h, const std::array<Eigen::Isometry3d, 2>& X_WS, Posture* posture) {
+void SolveLegs(const Humanoid& h, const std::array<Eigen::Isometry3d, 2>& X_WS, JointPosture* posture) {
   for (int s = 0; s < 2; ++s) {
     const auto ik = internal::SolveLegIk(h.leg(Side(s)), posture->X_WB.inverse() * X_WS[s]);
     const int first = s == 0 ? kLeftHipYaw : kRightHipYaw;
@@ -390,7 +390,7 @@ double Controller::KneelOffset() const {
   return p_ankle.x() + std::sqrt(leg.shin * leg.shin - dz * dz);
 }
 
-Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const {
+JointPosture Controller::TransitionPosture(const GroundFrame& stand, double s) const {
   const internal::LegGeometry& leg = humanoid_.leg(Side::kLeft);
   const double half = humanoid_.sole_half_length();
   const std::array<FootPlacement, 2> feet = FeetAt(stand, params_.stance_width);
@@ -399,8 +399,8 @@ Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const 
   const Eigen::Isometry3d X_WS = stand.Isometry();
 
   // key poses of the pelvis: standing, squatting, knees touching down (thighs vertical)
-  const Posture standing = StandingPosture(feet);
-  Posture squat;
+  const JointPosture standing = StandingPosture(feet);
+  JointPosture squat;
   squat.X_WB = X_WS * Eigen::Translation3d(-0.01, 0, params_.squat_height) *
                Eigen::AngleAxisd(params_.squat_pitch, Eigen::Vector3d::UnitY());
   squat.q[kLeftShoulderPitch] = squat.q[kRightShoulderPitch] = -1.0;
@@ -410,7 +410,7 @@ Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const 
   const double knee_x = KneelOffset();
   const Eigen::Matrix3d R_kneel = Ry(params_.kneel_pitch);
   const Eigen::Vector3d p_hip(knee_x, 0, humanoid_.knee_radius() + leg.thigh);
-  Posture kneel;
+  JointPosture kneel;
   kneel.X_WB = X_WS * Eigen::Translation3d(p_hip - R_kneel * Eigen::Vector3d(leg.p_BH.x(), 0, leg.p_BH.z())) *
                Eigen::AngleAxisd(params_.kneel_pitch, Eigen::Vector3d::UnitY());
   kneel.q = squat.q;
@@ -443,7 +443,7 @@ Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const 
 
   if (s <= 0.3) {
     // squat down over flat feet
-    Posture p = internal::LerpPosture(standing, squat, SmoothRamp(s, 0, 0.3));
+    JointPosture p = internal::LerpPosture(standing, squat, SmoothRamp(s, 0, 0.3));
     std::array<Eigen::Isometry3d, 2> soles;
     for (int k = 0; k < 2; ++k) {
       soles[k] = Eigen::Translation3d(feet[k].p) * Eigen::AngleAxisd(stand.yaw, Eigen::Vector3d::UnitZ());
@@ -454,8 +454,8 @@ Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const 
   if (s <= 0.65) {
     // knees forward and down while the feet pivot onto their toes
     const double b = SmoothRamp(s, 0.3, 0.65);
-    Posture p = internal::LerpPosture(squat, kneel, b);
-    const Posture start_c = crawl_at(0);
+    JointPosture p = internal::LerpPosture(squat, kneel, b);
+    const JointPosture start_c = crawl_at(0);
     for (int j : {kLeftShoulderPitch, kLeftShoulderRoll, kLeftElbow, kRightShoulderPitch,
                   kRightShoulderRoll, kRightElbow}) {
       p.q[j] = squat.q[j] + b * (start_c.q[j] - squat.q[j]);
@@ -469,7 +469,7 @@ Posture Controller::TransitionPosture(const GroundFrame& stand, double s) const 
   return crawl_at(SmoothRamp(s, 0.65, 1.0));
 }
 
-Posture Controller::Evaluate(const Segment& seg, double u, HeadAngles* head) const {
+JointPosture Controller::Evaluate(const Segment& seg, double u, HeadAngles* head) const {
   switch (seg.kind) {
     case Kind::kStep:
       return StepPosture(seg, u);

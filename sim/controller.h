@@ -21,15 +21,13 @@
 #include <Eigen/Geometry>
 #include <mujoco/mujoco.h>
 
+#include "geometry/pose2.h"
 #include "sim/humanoid.h"
 #include "sim/internal/gait.h"
 
 namespace fognav::sim {
 
-// A planar pose: position (m) and heading (rad) in some frame (world or odometry).
-struct Pose2 {
-  double x = 0, y = 0, yaw = 0;
-};
+using fognav::Pose2;
 
 // Per-stride limits of the motion commands, chosen for the 0.58 m model (legs 0.2 m).
 // A stride moves the robot frame once: the leading foot steps, the other joins it.
@@ -106,7 +104,7 @@ enum class Mode { kStanding, kCrawling };
 
 // The standing posture at `pose` (world) on a surface of height surface_z, head looking ahead:
 // soles flat under the hips, knees bent, 0.58 m tall. Controller::Reset starts from it.
-Posture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
+JointPosture StandingPostureAt(const Humanoid& h, const Pose2& pose, double surface_z,
                           const ControllerParams& params = {});
 
 class Controller {
@@ -205,13 +203,13 @@ class Controller {
   void RequireMode(Mode mode, const char* command) const;
   void PushStride(double dx, double dy, double dyaw, double dz);
   internal::FootPlacement NoisyFoot(const internal::GroundFrame& frame, int side);
-  Posture StandingPosture(const std::array<internal::FootPlacement, 2>& feet) const;
-  Posture Evaluate(const Segment& seg, double u, HeadAngles* head) const;
-  Posture StepPosture(const Segment& seg, double u) const;
-  Posture CrawlCyclePosture(const Segment& seg, double u) const;
-  Posture CrawlPostureAt(const internal::GroundFrame& frame) const;
+  JointPosture StandingPosture(const std::array<internal::FootPlacement, 2>& feet) const;
+  JointPosture Evaluate(const Segment& seg, double u, HeadAngles* head) const;
+  JointPosture StepPosture(const Segment& seg, double u) const;
+  JointPosture CrawlCyclePosture(const Segment& seg, double u) const;
+  JointPosture CrawlPostureAt(const internal::GroundFrame& frame) const;
   // kneeling down from the standing frame `stand`: s = 0 stands, s = 1 crawls
-  Posture TransitionPosture(const internal::GroundFrame& stand, double s) const;
+  JointPosture TransitionPosture(const internal::GroundFrame& stand, double s) const;
   void CheckContacts(const mjModel* m, const mjData* d);
 
   Humanoid humanoid_;
@@ -222,7 +220,7 @@ class Controller {
   Plan plan_;
   Mode mode_ = Mode::kStanding;
   HeadAngles head_;
-  Posture current_;
+  JointPosture current_;
   Pose2 believed_;
   int steps_ = 0;
   int tick_ = 0;

@@ -102,7 +102,7 @@ Humanoid::Humanoid(const mjModel* m) {
   }
 }
 
-void SetPosture(const Humanoid& h, const Posture& posture, mjData* d) {
+void SetPosture(const Humanoid& h, const JointPosture& posture, mjData* d) {
   mjtNum* root = d->qpos + h.root_qpos();
   const Eigen::Vector3d p = posture.X_WB.translation();
   const Eigen::Quaterniond quat(posture.X_WB.linear());
@@ -119,8 +119,8 @@ void SetPosture(const Humanoid& h, const Posture& posture, mjData* d) {
   }
 }
 
-Posture GetPosture(const Humanoid& h, const mjData* d) {
-  Posture posture;
+JointPosture GetPosture(const Humanoid& h, const mjData* d) {
+  JointPosture posture;
   const mjtNum* root = d->qpos + h.root_qpos();
   posture.X_WB.translation() = Eigen::Vector3d(root[0], root[1], root[2]);
   posture.X_WB.linear() =

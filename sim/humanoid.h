@@ -48,7 +48,7 @@ enum class Side { kLeft = 0, kRight = 1 };
 enum class Eye { kLeft = 0, kRight = 1 };
 
 // A whole-body configuration: base (pelvis) pose in the world and joint angles, radians.
-struct Posture {
+struct JointPosture {
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   std::array<double, kNumJoints> q{};
 };
@@ -108,10 +108,10 @@ class Humanoid {
 };
 
 // Writes a posture into qpos (joint angles clamped to their ranges); call mj_kinematics after.
-void SetPosture(const Humanoid& h, const Posture& posture, mjData* d);
+void SetPosture(const Humanoid& h, const JointPosture& posture, mjData* d);
 
 // Reads the posture back from qpos.
-Posture GetPosture(const Humanoid& h, const mjData* d);
+JointPosture GetPosture(const Humanoid& h, const mjData* d);
 
 // The robot frame R in the world from the current kinematics (d after mj_kinematics), z up.
 // Standing (soles level, below the knees): origin midway between the two sole sites, x along

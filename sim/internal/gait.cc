@@ -70,7 +70,7 @@ int StrideCount(double dx, double dy, double dyaw, double max_forward, double ma
   return n;
 }
 
-void SetStandingArms(Posture* posture) {
+void SetStandingArms(JointPosture* posture) {
   auto& q = posture->q;
   q[kWaist] = 0;
   q[kLeftShoulderPitch] = q[kRightShoulderPitch] = 0.05;
@@ -80,7 +80,7 @@ void SetStandingArms(Posture* posture) {
 }
 
 bool SolveStance(const Humanoid& h, const std::array<FootPlacement, 2>& feet, const Vector2d& p_xy,
-                 double base_z, double yaw, Posture* posture) {
+                 double base_z, double yaw, JointPosture* posture) {
   Eigen::Isometry3d X_WB = Eigen::Isometry3d::Identity();
   X_WB.linear() = Rz(yaw);
   X_WB.translation() = Vector3d(p_xy.x(), p_xy.y(), base_z);
@@ -108,10 +108,10 @@ double MaxBaseHeight(const Humanoid& h, const std::array<FootPlacement, 2>& feet
   return z;
 }
 
-Posture CrawlPosture(const Humanoid& h, const CrawlShape& shape, const GroundFrame& frame,
+JointPosture CrawlPosture(const Humanoid& h, const CrawlShape& shape, const GroundFrame& frame,
                      const std::array<Vector3d, 2>& knees_W, const std::array<Vector3d, 2>& hands_W,
                      const std::array<bool, 2>& knee_planted) {
-  Posture posture;
+  JointPosture posture;
   const Eigen::Matrix3d R_WB = Rz(frame.yaw) * Ry(shape.base_pitch);
   const Vector3d p_base = frame.PointAt(shape.base_x, 0, 0);
 
@@ -159,8 +159,8 @@ Posture CrawlPosture(const Humanoid& h, const CrawlShape& shape, const GroundFra
   return posture;
 }
 
-Posture LerpPosture(const Posture& a, const Posture& b, double s) {
-  Posture p;
+JointPosture LerpPosture(const JointPosture& a, const JointPosture& b, double s) {
+  JointPosture p;
   p.X_WB.translation() = (1 - s) * a.X_WB.translation() + s * b.X_WB.translation();
   p.X_WB.linear() = Eigen::Quaterniond(a.X_WB.linear())
                         .slerp(s, Eigen::Quaterniond(b.X_WB.linear()))

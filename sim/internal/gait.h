@@ -44,12 +44,12 @@ int StrideCount(double dx, double dy, double dyaw, double max_forward, double ma
                 double max_sideways, double max_turn);
 
 // Upper-body joint angles kept fixed while standing and walking (arms hanging).
-void SetStandingArms(Posture* posture);
+void SetStandingArms(JointPosture* posture);
 
 // Base pose and leg angles that put both soles at the given placements, with the pelvis
 // upright at (p_xy, base_z) and heading `yaw`. Returns false if a foot was out of reach.
 bool SolveStance(const Humanoid& h, const std::array<FootPlacement, 2>& feet, const Eigen::Vector2d& p_xy,
-                 double base_z, double yaw, Posture* posture);
+                 double base_z, double yaw, JointPosture* posture);
 
 // Highest base height (world z) at which both ankles stay within `max_leg` of the hips for a
 // pelvis upright at p_xy with heading yaw.
@@ -73,13 +73,13 @@ struct CrawlShape {
 // Whole-body posture for crawling: base from the crawl frame X_WC and the shape, legs pointing
 // the thighs at the knee targets, arms reaching the hand targets (all world points). The base
 // height is chosen so the lowest knee target is met.
-Posture CrawlPosture(const Humanoid& h, const CrawlShape& shape, const GroundFrame& frame,
+JointPosture CrawlPosture(const Humanoid& h, const CrawlShape& shape, const GroundFrame& frame,
                      const std::array<Eigen::Vector3d, 2>& knees_W,
                      const std::array<Eigen::Vector3d, 2>& hands_W,
                      const std::array<bool, 2>& knee_planted);
 
 // Interpolates two postures: base position linearly, base rotation by slerp, joints linearly.
-Posture LerpPosture(const Posture& a, const Posture& b, double s);
+JointPosture LerpPosture(const JointPosture& a, const JointPosture& b, double s);
 
 }  // namespace fognav::sim::internal
 

@@ -103,7 +103,7 @@ TEST_F(StandingRobot, HasAForwardLookingStereoPairFiveCentimetresApart) {
 TEST_F(StandingRobot, HeadCameraPoseComesFromTheJointsNotTheBasePose) {
   const Eigen::Isometry3d before = HeadCameraPose(h(), d_.get(), Eye::kLeft);
   // same joints, base elsewhere: the pose in the robot frame does not change
-  Posture p = GetPosture(h(), d_.get());
+  JointPosture p = GetPosture(h(), d_.get());
   p.X_WB = Eigen::Translation3d(1.0, 2.0, 0.3) * Eigen::AngleAxisd(2.0, Eigen::Vector3d::UnitZ()) * p.X_WB;
   SetPosture(h(), p, d_.get());
   mj_kinematics(m_.get(), d_.get());

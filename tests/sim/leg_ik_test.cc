@@ -60,7 +60,7 @@ TEST(LegIk, ForwardKinematicsMatchesTheModel) {
   const Humanoid h(m.get());
   std::mt19937 rng(11);
   for (int trial = 0; trial < 20; ++trial) {
-    Posture posture;
+    JointPosture posture;
     posture.X_WB.translation() = Eigen::Vector3d(0.3, -0.2, 0.25);
     posture.X_WB.linear() =
         Eigen::AngleAxisd(0.4 * trial, Eigen::Vector3d(0.2, 0.3, 1).normalized()).toRotationMatrix();
