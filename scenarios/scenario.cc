@@ -308,6 +308,119 @@ void ReadParams(const Reader& r, const YAML::Node& params, std::map<std::string,
   }
 }
 
+// world: the floor and the objects on it
+void ReadWorld(const Reader& r, const YAML::Node& world, Scenario* out) {
+  Scenario& s = *out;
+  r.Map(world, "world", {"floor", "floor_center", "objects"}, {"floor"});
+  s.floor_size = r.Vec2(world["floor"], "world.floor");
+  if (s.floor_size.minCoeff() <= 0) r.Fail(world["floor"], "world.floor", "expected 2 positive sizes");
+  if (s.floor_size.maxCoeff() > kMaxFloorSide) {
+    r.Fail(world["floor"], "world.floor", "expected sides of at most 30 m");
+  }
+  if (world["floor_center"]) s.floor_center = r.Vec2(world["floor_center"], "world.floor_center");
+  if (world["objects"]) {
+    const YAML::Node objects = world["objects"];
+    if (!objects.IsSequence()) r.Fail(objects, "world.objects", "expected a list of objects");
+    for (size_t i = 0; i < objects.size(); ++i) {
+      std::string key = Reader::Index("world.objects", i);
+      const YAML::Node entry = objects[i];
+      if (!entry.IsMap() || entry.size() != 1) {
+        r.Fail(entry, key, "expected exactly one of the keys box, stairs, table");
+      }
+      r.Map(entry, key, {"box", "stairs", "table"});
+      std::string kind = entry.begin()->first.as<std::string>();
+      const YAML::Node body = entry.begin()->second;
+      if (kind == "box") s.objects.push_back(ReadBox(r, body, key + ".box"));
+      if (kind == "stairs") s.objects.push_back(ReadStairs(r, body, key + ".stairs"));
+      if (kind == "table") s.objects.push_back(ReadTable(r, body, key + ".table"));
+    }
+  }
+
+}
+
+// sensor: the head camera's images and the depth they give
+void ReadSensor(const Reader& r, const YAML::Node& sensor, Scenario* out) {
+  Scenario& s = *out;
+  r.Map(sensor, "sensor", {"width", "height", "hfov_deg", "baseline", "depth", "pixel_samples"});
+  if (sensor["width"]) s.sensor.width_px = r.Integer(sensor["width"], "sensor.width", 16);
+  if (sensor["height"]) s.sensor.height_px = r.Integer(sensor["height"], "sensor.height", 16);
+  if (s.sensor.width_px > sim::kMaxViewWidth || s.sensor.height_px > sim::kMaxViewHeight) {
+    r.Fail(sensor, "sensor",
+           "images up to " + Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) +
+               " pixels are supported, got " + Dims(s.sensor.width_px, s.sensor.height_px));
+  }
+  if (sensor["hfov_deg"]) {
+    double hfov_deg = r.Number(sensor["hfov_deg"], "sensor.hfov_deg");
+    if (hfov_deg <= 1 || hfov_deg >= 170) {
+      r.Fail(sensor["hfov_deg"], "sensor.hfov_deg", "expected a field of view from 1 to 170");
+    }
+    s.sensor.hfov = hfov_deg * kDegToRad;
+  }
+  if (sensor["baseline"]) s.sensor.baseline = r.Positive(sensor["baseline"], "sensor.baseline");
+  if (sensor["depth"]) {
+    std::string depth = r.String(sensor["depth"], "sensor.depth");
+    if (depth == "stereo") {
+      s.sensor.depth = DepthMode::kStereo;
+    } else if (depth == "ideal") {
+      s.sensor.depth = DepthMode::kIdeal;
+    } else {
+      r.Fail(sensor["depth"], "sensor.depth", "expected stereo or ideal, got '" + depth + "'");
+    }
+  }
+  if (const YAML::Node samples = sensor["pixel_samples"]) {
+    s.sensor.pixel_samples = r.Integer(samples, "sensor.pixel_samples", 1);
+    const int k = s.sensor.pixel_samples;
+    if (k > kMaxPixelSamples) {
+      r.Fail(samples, "sensor.pixel_samples",
+             "expected 1 to " + std::to_string(kMaxPixelSamples) +
+                 " samples per pixel side, got " + std::to_string(k));
+    }
+    const int w = s.sensor.width_px, h = s.sensor.height_px;
+    if (k * w > sim::kMaxViewWidth || k * h > sim::kMaxViewHeight) {
+      r.Fail(samples, "sensor.pixel_samples",
+             std::to_string(k) + " samples per pixel side of a " + Dims(w, h) + " image render " +
+                 Dims(k * w, k * h) + " pixels; at most " +
+                 Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) + " are supported");
+    }
+  }
+}
+
+// expect: what the mission must end with
+void ReadExpect(const Reader& r, const YAML::Node& expect, Scenario* out) {
+  Scenario& s = *out;
+  r.Map(expect, "expect", {"reach_goal", "actions_used", "no_collision", "failure"});
+  if (expect["reach_goal"]) s.expect.reach_goal = r.Bool(expect["reach_goal"], "expect.reach_goal");
+  if (expect["no_collision"]) {
+    s.expect.no_collision = r.Bool(expect["no_collision"], "expect.no_collision");
+  }
+  if (const YAML::Node actions = expect["actions_used"]) {
+    if (!actions.IsSequence()) r.Fail(actions, "expect.actions_used", "expected a list of actions");
+    for (size_t i = 0; i < actions.size(); ++i) {
+      std::string key = Reader::Index("expect.actions_used", i);
+      std::string action = r.String(actions[i], key);
+      const auto& known = ActionNames();
+      if (std::find(known.begin(), known.end(), action) == known.end()) {
+        r.Fail(actions[i], key, "unknown action '" + action +
+                                    "' (expected walk, sidestep, turn, stairs_up, stairs_down or crawl)");
+      }
+      s.expect.actions_used.push_back(action);
+    }
+  }
+  if (expect["failure"]) {
+    std::string failure = r.String(expect["failure"], "expect.failure");
+    const auto& known = FailureNames();
+    if (std::find(known.begin(), known.end(), failure) == known.end()) {
+      r.Fail(expect["failure"], "expect.failure",
+             "unknown failure '" + failure +
+                 "' (expected no_path, collision, off_floor or timeout)");
+    }
+    s.expect.failure = failure;
+    if (s.expect.reach_goal.value_or(false)) {
+      r.Fail(expect["failure"], "expect.failure", "a mission cannot both reach the goal and fail");
+    }
+  }
+}
+
 Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& source) {
   if (!root.IsMap()) {
     // an empty file has no mark: its first line is meant
@@ -339,76 +452,9 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
   s.goal = r.Vec2(root["goal"]["position"], "goal.position");
   if (root["goal"]["tolerance"]) s.goal_tolerance = r.Positive(root["goal"]["tolerance"], "goal.tolerance");
 
-  const YAML::Node world = root["world"];
-  r.Map(world, "world", {"floor", "floor_center", "objects"}, {"floor"});
-  s.floor_size = r.Vec2(world["floor"], "world.floor");
-  if (s.floor_size.minCoeff() <= 0) r.Fail(world["floor"], "world.floor", "expected 2 positive sizes");
-  if (s.floor_size.maxCoeff() > kMaxFloorSide) {
-    r.Fail(world["floor"], "world.floor", "expected sides of at most 30 m");
-  }
-  if (world["floor_center"]) s.floor_center = r.Vec2(world["floor_center"], "world.floor_center");
-  if (world["objects"]) {
-    const YAML::Node objects = world["objects"];
-    if (!objects.IsSequence()) r.Fail(objects, "world.objects", "expected a list of objects");
-    for (size_t i = 0; i < objects.size(); ++i) {
-      std::string key = Reader::Index("world.objects", i);
-      const YAML::Node entry = objects[i];
-      if (!entry.IsMap() || entry.size() != 1) {
-        r.Fail(entry, key, "expected exactly one of the keys box, stairs, table");
-      }
-      r.Map(entry, key, {"box", "stairs", "table"});
-      std::string kind = entry.begin()->first.as<std::string>();
-      const YAML::Node body = entry.begin()->second;
-      if (kind == "box") s.objects.push_back(ReadBox(r, body, key + ".box"));
-      if (kind == "stairs") s.objects.push_back(ReadStairs(r, body, key + ".stairs"));
-      if (kind == "table") s.objects.push_back(ReadTable(r, body, key + ".table"));
-    }
-  }
+  ReadWorld(r, root["world"], &s);
 
-  if (const YAML::Node sensor = root["sensor"]) {
-    r.Map(sensor, "sensor", {"width", "height", "hfov_deg", "baseline", "depth", "pixel_samples"});
-    if (sensor["width"]) s.sensor.width_px = r.Integer(sensor["width"], "sensor.width", 16);
-    if (sensor["height"]) s.sensor.height_px = r.Integer(sensor["height"], "sensor.height", 16);
-    if (s.sensor.width_px > sim::kMaxViewWidth || s.sensor.height_px > sim::kMaxViewHeight) {
-      r.Fail(sensor, "sensor",
-             "images up to " + Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) +
-                 " pixels are supported, got " + Dims(s.sensor.width_px, s.sensor.height_px));
-    }
-    if (sensor["hfov_deg"]) {
-      double hfov_deg = r.Number(sensor["hfov_deg"], "sensor.hfov_deg");
-      if (hfov_deg <= 1 || hfov_deg >= 170) {
-        r.Fail(sensor["hfov_deg"], "sensor.hfov_deg", "expected a field of view from 1 to 170");
-      }
-      s.sensor.hfov = hfov_deg * kDegToRad;
-    }
-    if (sensor["baseline"]) s.sensor.baseline = r.Positive(sensor["baseline"], "sensor.baseline");
-    if (sensor["depth"]) {
-      std::string depth = r.String(sensor["depth"], "sensor.depth");
-      if (depth == "stereo") {
-        s.sensor.depth = DepthMode::kStereo;
-      } else if (depth == "ideal") {
-        s.sensor.depth = DepthMode::kIdeal;
-      } else {
-        r.Fail(sensor["depth"], "sensor.depth", "expected stereo or ideal, got '" + depth + "'");
-      }
-    }
-    if (const YAML::Node samples = sensor["pixel_samples"]) {
-      s.sensor.pixel_samples = r.Integer(samples, "sensor.pixel_samples", 1);
-      const int k = s.sensor.pixel_samples;
-      if (k > kMaxPixelSamples) {
-        r.Fail(samples, "sensor.pixel_samples",
-               "expected 1 to " + std::to_string(kMaxPixelSamples) +
-                   " samples per pixel side, got " + std::to_string(k));
-      }
-      const int w = s.sensor.width_px, h = s.sensor.height_px;
-      if (k * w > sim::kMaxViewWidth || k * h > sim::kMaxViewHeight) {
-        r.Fail(samples, "sensor.pixel_samples",
-               std::to_string(k) + " samples per pixel side of a " + Dims(w, h) + " image render " +
-                   Dims(k * w, k * h) + " pixels; at most " +
-                   Dims(sim::kMaxViewWidth, sim::kMaxViewHeight) + " are supported");
-      }
-    }
-  }
+  if (const YAML::Node sensor = root["sensor"]) ReadSensor(r, sensor, &s);
 
   if (const YAML::Node noise = root["odometry_noise"]) {
     r.Map(noise, "odometry_noise", {"xy", "yaw_deg"});
@@ -424,39 +470,7 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
     if (limits["max_steps"]) s.max_steps = r.Integer(limits["max_steps"], "limits.max_steps", 1);
   }
 
-  if (const YAML::Node expect = root["expect"]) {
-    r.Map(expect, "expect", {"reach_goal", "actions_used", "no_collision", "failure"});
-    if (expect["reach_goal"]) s.expect.reach_goal = r.Bool(expect["reach_goal"], "expect.reach_goal");
-    if (expect["no_collision"]) {
-      s.expect.no_collision = r.Bool(expect["no_collision"], "expect.no_collision");
-    }
-    if (const YAML::Node actions = expect["actions_used"]) {
-      if (!actions.IsSequence()) r.Fail(actions, "expect.actions_used", "expected a list of actions");
-      for (size_t i = 0; i < actions.size(); ++i) {
-        std::string key = Reader::Index("expect.actions_used", i);
-        std::string action = r.String(actions[i], key);
-        const auto& known = ActionNames();
-        if (std::find(known.begin(), known.end(), action) == known.end()) {
-          r.Fail(actions[i], key, "unknown action '" + action +
-                                      "' (expected walk, sidestep, turn, stairs_up, stairs_down or crawl)");
-        }
-        s.expect.actions_used.push_back(action);
-      }
-    }
-    if (expect["failure"]) {
-      std::string failure = r.String(expect["failure"], "expect.failure");
-      const auto& known = FailureNames();
-      if (std::find(known.begin(), known.end(), failure) == known.end()) {
-        r.Fail(expect["failure"], "expect.failure",
-               "unknown failure '" + failure +
-                   "' (expected no_path, collision, off_floor or timeout)");
-      }
-      s.expect.failure = failure;
-      if (s.expect.reach_goal.value_or(false)) {
-        r.Fail(expect["failure"], "expect.failure", "a mission cannot both reach the goal and fail");
-      }
-    }
-  }
+  if (const YAML::Node expect = root["expect"]) ReadExpect(r, expect, &s);
 
   if (const YAML::Node params = root["params"]) ReadParams(r, params, &s.params);
 
