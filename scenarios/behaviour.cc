@@ -504,12 +504,29 @@ bool Behaviour::FindLookout(const perception::Fog& fog, const perception::MapSta
     *why = chosen == 1 ? "peek" : "inspect";
     return true;
   }
-  if (!Moves(edge)) return false;
+  if (!Moves(edge)) return BackOff(fog, believed, posture, toward, why);
   const Eigen::Vector2d end = At(edge.path.back().pose_G);
   StartExploring(end + (end - position).normalized() * limits_.explore_beyond,
                  limits_.explore_beyond, false, position);
   *toward = std::move(edge);
   *why = "explore_edge";
+  return true;
+}
+
+// Nothing else left: what the eyes saw from here may close the way (a narrow gap smeared shut
+// by the views from its mouth, where the body hides its floor), so back off back_off from the
+// goal's side and look again from there, where the way lies in view.
+bool Behaviour::BackOff(const perception::Fog& fog, const Pose2& believed, nav::Posture posture,
+                        nav::PlanResult* toward, const char** why) {
+  const Eigen::Vector2d position = At(believed);
+  const Eigen::Vector2d to_goal = goal_.at - position;
+  if (!(limits_.back_off > 0) || to_goal.norm() < 1e-9) return false;
+  const Eigen::Vector2d target = position - to_goal.normalized() * limits_.back_off;
+  nav::PlanResult way = nav::PlanToward(fog, believed, target, planner(), posture);
+  if (!LeadsNearer(way, target, limits_.back_off)) return false;
+  StartExploring(target, limits_.inspect_reach, true, position);
+  *toward = std::move(way);
+  *why = "back_off";
   return true;
 }
 

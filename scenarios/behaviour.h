@@ -122,6 +122,8 @@ class Behaviour {
   bool FindLookout(const perception::Fog& fog, const perception::MapState& maps,
                    const perception::Pose2& believed, navigation::Posture posture,
                    navigation::PlanResult* toward, const char** why);
+  bool BackOff(const perception::Fog& fog, const perception::Pose2& believed,
+               navigation::Posture posture, navigation::PlanResult* toward, const char** why);
   void StartExploring(const Eigen::Vector2d& target, double reach, bool to_look,
                       const Eigen::Vector2d& from);
   Decision LookAround(const char* name, const perception::Pose2& at, Decision d);

@@ -435,6 +435,8 @@ void AddExecutionLimitsRows(std::vector<ParamInfo>* t) {
       &S::inspect_reach);
   add("peek_reach", kMetres, "a peek goes to within this of its pose, metres", &S::peek_reach);
   add("peek_lead", kMetres, "a peek looks this far beyond the blind move, metres", &S::peek_lead);
+  add("back_off", kMetres, "with nothing else left, back off this far to look again, metres",
+      &S::back_off);
   add("thrash_cycles", {1, 100000}, "cycles that may count as going back and forth",
       &S::thrash_cycles);
   add("thrash_radius", kMetres, "positions within this count as going back and forth, metres",

@@ -61,6 +61,8 @@ struct ExecutionLimits {
   double inspect_reach = 0.25;      // an inspection goes to within this of its pose, metres
   double peek_reach = 0.05;         // a peek goes to within this of its pose, metres
   double peek_lead = 0.5;      // a peek looks at the floor this far beyond the blind move, metres
+  // with nothing else left, back off this far from the goal's side to look again, metres (0: never)
+  double back_off = 0.6;
   int thrash_cycles = 20;      // cycles within thrash_radius that count as going back and forth
   double thrash_radius = 0.6;  // metres
   int circling_arrivals = 5;   // arrivals at one pose among thrash_cycles that call for a look

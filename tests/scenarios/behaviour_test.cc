@@ -107,7 +107,7 @@ TEST(Behaviour, WithoutAWayToTheGoalItGoesNearerAndLooksAgain) {
   EXPECT_LT(end.x, 1.4);  // the wall's near face
 }
 
-TEST(Behaviour, BoxedInItGoesNearerLooksAroundLooksAfreshAndThenGivesUp) {
+TEST(Behaviour, BoxedInItGoesNearerLooksAroundLooksAfreshBacksOffAndThenGivesUp) {
   const Eigen::Vector2d goal(2.5, 1.0);
   Behaviour b = MakeBehaviour(goal, {0.4, 1.0, 0.0});
   const Decision toward = b.Decide(Boxed(), kNoMaps, {0.4, 1.0, 0.0}, nav::Posture::kUpright);
@@ -125,7 +125,19 @@ TEST(Behaviour, BoxedInItGoesNearerLooksAroundLooksAfreshAndThenGivesUp) {
   EXPECT_STREQ(fresh.name, "fresh_look");
   ASSERT_TRUE(b.state().fresh_at);
   EXPECT_TRUE(b.state().just_looked);
-  // the same place again: no second fresh look; walled in within the window, nothing to explore
+  // the same place again: no second fresh look; walled in within the window, nothing to
+  // explore or inspect: it backs off from the goal's side to look again from there
+  const Decision back = b.Decide(Boxed(), kNoMaps, end, nav::Posture::kUpright);
+  ASSERT_EQ(back.action, Action::kFollow);
+  EXPECT_STREQ(back.name, "back_off");
+  EXPECT_EQ(b.mode(), Mode::kGoLook);
+  ASSERT_TRUE(back.target);
+  EXPECT_NEAR((*back.target - Eigen::Vector2d(end.x, end.y)).norm(), ExecutionLimits{}.back_off,
+              1e-9);
+  EXPECT_LT(back.target->x(), end.x);  // away from the goal
+  // with its explorations spent, nothing is left
+  b.mutable_state().explore.reset();
+  b.mutable_state().explorations = ExecutionLimits{}.max_explorations;
   const Decision then = b.Decide(Boxed(), kNoMaps, end, nav::Posture::kUpright);
   EXPECT_EQ(then.action, Action::kGiveUp);
   EXPECT_STREQ(then.name, "give_up");
