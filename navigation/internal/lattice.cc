@@ -1,11 +1,13 @@
 #include "navigation/internal/lattice.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <queue>
 #include <utility>
 
@@ -156,47 +158,10 @@ void SearchMemory::Begin(int num_states) {
   }
 }
 
-Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
-                 SearchMemory* memory, End end, bool heuristic)
-    : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
-  const perception::GridWindow& w = fog.window;
-  if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
-  num_cells_ = w.NumCells();
-  if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
-    Die("Plan: FOG type/height arrays do not match its window");
-  }
-  const double min_factor = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor,
-                                      p.stairs_factor, p.crawl_factor,
-                                      p.crawl_factor * p.backward_factor});
-  if (!(min_factor > 0)) Die("Plan: move cost factors must be positive");
-  if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
-        p.clearance_weight >= 0 && p.exit_factor >= 0)) {
-    Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
-  }
-  if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
-  if (!(p.exit_band >= 0)) Die("Plan: exit_band must not be negative");
-  if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
-  if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
-  if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
-    Die("Plan: level_margin must be in [0, margin]");
-  }
-  if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
-  if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
-  if (!(p.hidden_reach >= 0 && p.hidden_reach <= 1.0)) {
-    Die("Plan: hidden_reach must lie in [0, 1] m");
-  }
-  if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
-  if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
-  if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
-  int gx = 0, gy = 0;
-  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
-  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
-
+void LatticeShapes::Build(const PlannerParams& p, double resolution) {
   cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
-  // lattice geometry
   for (int k = 0; k < kNumHeadings; ++k) {
-    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * w.resolution;
+    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * resolution;
     turn_angle_[k] = std::abs(WrapAngle(HeadingYaw((k + 1) % kNumHeadings) - HeadingYaw(k)));
     kneel_steps_[k] = int(std::lround(p.kneel_offset / step_length_[k]));
   }
@@ -209,7 +174,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   }
   auto in_frame = [&](int k, int dx, int dy) {
     const double c = cos_k[k], s = sin_k[k];
-    return Eigen::Vector2d((dx * c + dy * s) * w.resolution, (-dx * s + dy * c) * w.resolution);
+    return Eigen::Vector2d((dx * c + dy * s) * resolution, (-dx * s + dy * c) * resolution);
   };
   // the offsets up to `reach` cells away whose centres lie in [u_lo, u_hi] x [v_lo, v_hi] of
   // the frame of heading k
@@ -252,8 +217,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
     if (!(a > 0 && b > 0)) Die("Plan: footprint sizes must be positive");
     if (std::abs(offset) >= a) Die("Plan: crawl_offset must be inside the crawling footprint");
     // circles about the robot's origin inside and around the rectangle
-    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / w.resolution;
-    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / w.resolution;
+    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / resolution;
+    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / resolution;
     const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
     outer_reach_cells_[q] = 0;
     for (int k = 0; k < kNumHeadings; ++k) {
@@ -274,7 +239,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   {
     if (!(body_back >= 0 && body_front >= 0)) Die("Plan: body extents must not be negative");
     body_outer_radius_cells_ =
-        std::hypot(std::max(body_back, body_front), body_half) / w.resolution;
+        std::hypot(std::max(body_back, body_front), body_half) / resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
       std::vector<CellStep>& extra = body_extra_[k];
@@ -317,8 +282,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
       const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
       std::vector<double> cos_j(static_cast<size_t>(n)), sin_j(static_cast<size_t>(n));
       for (int j = 1; j < n; ++j) {
-        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * w.resolution;
-        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * w.resolution;
+        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * resolution;
+        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * resolution;
       }
       turn_soles_[k].clear();
       turn_body_[k].clear();
@@ -354,7 +319,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
 
   // the head's reach
   {
-    const double head = (p.head_reach + p.margin) / w.resolution + kEps;
+    const double head = (p.head_reach + p.margin) / resolution + kEps;
     const int reach = int(std::ceil(head));
     head_disc_.clear();
     for (int dy = -reach; dy <= reach; ++dy) {
@@ -389,7 +354,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   // do not add up to a step over a riser within the limit, the robot still climbs on its
   // heading), with the cells the standing footprint sweeps: centres in the rectangle from the
   // start footprint's back edge to the end footprint's front edge, as wide as the two side by side
-  const int reach_end = int(std::ceil(p.max_step_length / w.resolution + kEps));
+  const int reach_end = int(std::ceil(p.max_step_length / resolution + kEps));
   for (int k = 0; k < kNumHeadings; ++k) {
     const double a = half_along[0], b = half_across[0];
     climbs_[k].clear();
@@ -405,7 +370,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
         climb.to = {ex, ey};
         climb.length = length;
         climb.across = across;
-        const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
+        const int reach = int(std::ceil((length + std::hypot(a, b)) / resolution)) + 1;
         climb.swept =
             cells_in(k, reach, -a, along + a, std::min(0.0, across) - b, std::max(0.0, across) + b);
         const int n = std::max(std::abs(ex), std::abs(ey));
@@ -421,6 +386,72 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
              (x.length <= y.length + kEps && std::abs(x.across) < std::abs(y.across) - kEps);
     });
   }
+}
+
+namespace {
+
+// The shapes for p's sizes and the cell size, built on a thread's first use of them and kept (a
+// few robots' worth: the oldest go when more come).
+const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution) {
+  // every PlannerParams field that LatticeShapes::Build reads
+  using Key = std::array<double, 17>;
+  const Key key = {resolution,        p.shoulder_width, p.depth,        p.crawl_length,
+                   p.crawl_width,     p.crawl_offset,   p.margin,       p.level_margin,
+                   p.stance_width,    p.body_back,      p.body_front,   p.arm_reach,
+                   p.head_reach,      p.max_step_length, p.max_step_sideways,
+                   p.max_stairs_heading_error,          p.kneel_offset};
+  thread_local std::vector<std::pair<Key, std::unique_ptr<LatticeShapes>>> cache;
+  for (const auto& [k, shapes] : cache) {
+    if (k == key) return *shapes;
+  }
+  constexpr size_t kKept = 8;
+  if (cache.size() == kKept) cache.erase(cache.begin());
+  auto shapes = std::make_unique<LatticeShapes>();
+  shapes->Build(p, resolution);
+  cache.emplace_back(key, std::move(shapes));
+  return *cache.back().second;
+}
+
+}  // namespace
+
+Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                 SearchMemory* memory, End end, bool heuristic)
+    : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
+  const perception::GridWindow& w = fog.window;
+  if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
+  num_cells_ = w.NumCells();
+  if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
+    Die("Plan: FOG type/height arrays do not match its window");
+  }
+  const double min_factor = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor,
+                                      p.stairs_factor, p.crawl_factor,
+                                      p.crawl_factor * p.backward_factor});
+  if (!(min_factor > 0)) Die("Plan: move cost factors must be positive");
+  if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
+        p.clearance_weight >= 0 && p.exit_factor >= 0)) {
+    Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
+  }
+  if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
+  if (!(p.exit_band >= 0)) Die("Plan: exit_band must not be negative");
+  if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
+  if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
+  if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
+    Die("Plan: level_margin must be in [0, margin]");
+  }
+  if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
+  if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
+  if (!(p.hidden_reach >= 0 && p.hidden_reach <= 1.0)) {
+    Die("Plan: hidden_reach must lie in [0, 1] m");
+  }
+  if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
+  if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
+  if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
+  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
+  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
+
+  static_cast<LatticeShapes&>(*this) = CachedShapes(p, w.resolution);
 
   ComputeFloorHeights();
   ComputeLevelRanges();

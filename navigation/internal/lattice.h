@@ -81,7 +81,57 @@ enum class End : uint8_t {
   kBeyond,
 };
 
-class Lattice {
+// A step up or down from an origin at heading k: the cell offset of its end, its length and
+// the part of it across the heading (PlannerParams::max_step_sideways), the cells the standing
+// footprint sweeps and the origin cells along its line (the end included).
+struct Climb {
+  CellStep to;
+  double length = 0, across = 0;  // metres
+  std::vector<CellStep> swept, line;
+};
+
+// The lattice's shapes, which depend only on the robot's sizes in PlannerParams and the cell
+// size, not on the map: footprints, the body's and the sweeps' cell offsets, the climbs. Each
+// thread builds them once per robot and cell size (Lattice copies them); the members carry
+// Lattice's names, whose private base this is.
+struct LatticeShapes {
+  // Builds the shapes for `p`'s sizes on cells of `resolution` metres; aborts on sizes that
+  // make no footprint.
+  void Build(const PlannerParams& p, double resolution);
+
+  double step_length_[kNumHeadings] = {};  // metres
+  double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
+  double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
+  int kneel_steps_[kNumHeadings] = {};     // lattice steps a posture change moves along each heading
+  std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
+  // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
+  std::vector<uint8_t> level_cell_[kNumHeadings];
+  // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
+  std::vector<CellStep> body_extra_[kNumHeadings];
+  // [k][j]: whether body_extra_[k][j] (turn_body_[k][j]) lies before or behind the legs, within
+  // the stance's width grown by margin, rather than beside them, where only the arms reach
+  std::vector<uint8_t> body_extra_legs_[kNumHeadings], turn_body_legs_[kNumHeadings];
+  // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
+  // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
+  std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
+  double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
+  double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
+  // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
+  int body_reach_cells_ = 0;
+  std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
+  // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
+  // +/-, by heading k + 4, 3: forward), relative to the new origin, that the footprint before
+  // did not cover
+  std::vector<CellStep> blind_lead_[2][kNumHeadings][4];
+  double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
+  double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
+  int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
+  // [k]: the climbs of heading k, shortest first: every cell offset ahead within
+  // max_step_length whose part across the heading is at most max_step_sideways
+  std::vector<Climb> climbs_[kNumHeadings];
+};
+
+class Lattice : private LatticeShapes {
  public:
   // how a standing body meets the map around it (BodyMeets), in increasing order
   static constexpr int kNoTouch = 0, kEdgeTouch = 1, kTouch = 2;
@@ -176,14 +226,6 @@ class Lattice {
   // of a tunnel cell. The crawl zone also spans floor of unseen headroom, where a ceiling seen
   // in part may go on, and in a room with nothing above the eyes that is all of its floor.
   bool MayGetDown(int cell) const;
-  // A step up or down from an origin at heading k: the cell offset of its end, its length and
-  // the part of it across the heading (PlannerParams::max_step_sideways), the cells the
-  // standing footprint sweeps and the origin cells along its line (the end included).
-  struct Climb {
-    CellStep to;
-    double length = 0, across = 0;  // metres
-    std::vector<CellStep> swept, line;
-  };
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // shortest climb of its heading that ends in a valid standing state on a floor more than
   // h_floor and at most h_stairs higher or lower.
@@ -253,46 +295,16 @@ class Lattice {
   // (border cells block a standing robot only off its own level)
   std::vector<double> blocked_d2_[2];
   std::vector<double> maybe_blocked_d2_[2];
-  int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
   std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
   std::vector<double> unknown_d2_;  // squared distance to the nearest UnseenUnwalked cell
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   double zone_d2_max_ = 0;  // crawl_zone_radius squared, cells^2 (plus kEps)
-  std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
-  // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
-  std::vector<uint8_t> level_cell_[kNumHeadings];
-  // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
-  std::vector<CellStep> body_extra_[kNumHeadings];
-  // [k][j]: whether body_extra_[k][j] (turn_body_[k][j]) lies before or behind the legs, within
-  // the stance's width grown by margin, rather than beside them, where only the arms reach
-  std::vector<uint8_t> body_extra_legs_[kNumHeadings], turn_body_legs_[kNumHeadings];
-  // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
-  // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
-  std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
-  double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
-  double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
-  // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
-  int body_reach_cells_ = 0;
-  std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
-  // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
-  // +/-, by heading k + 4, 3: forward), relative to the new origin, that the footprint before
-  // did not cover
-  std::vector<CellStep> blind_lead_[2][kNumHeadings][4];
-  double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
-  double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
-  int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
-  // [k]: the climbs of heading k, shortest first: every cell offset ahead within
-  // max_step_length whose part across the heading is at most max_step_sideways
-  std::vector<Climb> climbs_[kNumHeadings];
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
   SearchMemory own_memory_;
   SearchMemory* memory_ = nullptr;
-  double step_length_[kNumHeadings] = {};  // metres
-  double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
-  double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
 };
 
 }  // namespace fognav::navigation::internal
