@@ -452,6 +452,10 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
 
   static_cast<LatticeShapes&>(*this) = CachedShapes(p, w.resolution);
+  for (int k = 0; k < kNumHeadings; ++k) {
+    footprint_index_[k].clear();
+    for (const CellStep& o : footprint_[0][k]) footprint_index_[k].push_back(o.dy * w.size_x + o.dx);
+  }
 
   ComputeFloorHeights();
   ComputeLevelRanges();
@@ -1021,6 +1025,17 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   }
   const std::vector<CellStep>& cells = footprint_[q][heading];
   Spread stance(centre_h);
+  if (q == 0 && inside) {
+    // standing with all of the footprint in the window: the checks below, by cell index
+    const int* index = footprint_index_[heading].data();
+    const uint8_t* level = level_cell_[heading].data();
+    for (size_t j = 0; j < cells.size(); ++j) {
+      const size_t i = size_t(cell + index[j]);
+      if (!OnLevel(i, centre_h, level[j] ? p_.h_floor : p_.h_stairs)) return false;
+      if (level[j] && !stance.Add(fog_.height[i], p_.h_floor)) return false;
+    }
+    return true;
+  }
   for (size_t j = 0; j < cells.size(); ++j) {
     const int nx = ix + cells[j].dx, ny = iy + cells[j].dy;
     if (!w.Contains(nx, ny)) {

@@ -300,6 +300,8 @@ class Lattice : private LatticeShapes {
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   double zone_d2_max_ = 0;  // crawl_zone_radius squared, cells^2 (plus kEps)
+  // [k]: footprint_[0][k] as offsets of the cell index in this map's window
+  std::vector<int> footprint_index_[kNumHeadings];
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
