@@ -454,7 +454,9 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   static_cast<LatticeShapes&>(*this) = CachedShapes(p, w.resolution);
   for (int k = 0; k < kNumHeadings; ++k) {
     footprint_index_[k].clear();
-    for (const CellStep& o : footprint_[0][k]) footprint_index_[k].push_back(o.dy * w.size_x + o.dx);
+    for (const CellStep& o : footprint_[0][k]) {
+      footprint_index_[k].push_back(o.dy * w.size_x + o.dx);
+    }
   }
 
   ComputeFloorHeights();

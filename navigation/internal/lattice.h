@@ -102,7 +102,7 @@ struct LatticeShapes {
   double step_length_[kNumHeadings] = {};  // metres
   double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
   double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
-  int kneel_steps_[kNumHeadings] = {};     // lattice steps a posture change moves along each heading
+  int kneel_steps_[kNumHeadings] = {};     // lattice steps a posture change moves along heading k
   std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
   // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
   std::vector<uint8_t> level_cell_[kNumHeadings];

@@ -5,6 +5,7 @@
 #include <limits>
 #include <queue>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -129,6 +130,69 @@ TEST(Lattice, AStarCostEqualsBruteForceDijkstraFromUnderATable) {
   ASSERT_EQ(r.status, PlanStatus::kOk);
   EXPECT_NEAR(r.cost, expected, 1e-9 * expected);
   EXPECT_EQ(r.path.back().posture, Posture::kUpright);  // it crawled out and got up
+}
+
+// A path as runs of (move, heading) pairs: each pose after the first as its move's letter (w
+// walk, s sidestep, t turn, u/d stairs up/down, c crawl) and its lattice heading in hex, a run
+// of the same pair followed by its length ("w07" is seven walks along heading 0).
+std::string MovesOf(const PlanResult& r) {
+  static const char kLetter[kNumMoves + 1] = "nwstudc";
+  std::vector<std::string> poses;
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const PathPose& q = r.path[i];
+    const char heading = "0123456789abcdef"[NearestHeading(q.pose_G.yaw)];
+    poses.push_back(std::string(1, kLetter[int(q.move)]) + heading);
+  }
+  std::string out;
+  for (size_t i = 0; i < poses.size();) {
+    size_t j = i;
+    while (j < poses.size() && poses[j] == poses[i]) ++j;
+    out += (out.empty() ? "" : " ") + poses[i] + (j - i > 1 ? std::to_string(j - i) : "");
+    i = j;
+  }
+  return out;
+}
+
+// The plans the search found before it was made faster (commit be9dea0): the same moves at the
+// same cost, which is the brute-force Dijkstra's. A faster search that breaks ties differently
+// or prunes a state it should not fails here.
+TEST(Lattice, FasterSearchKeepsThePlans) {
+  struct Case {
+    const char* name;
+    Fog fog;
+    Pose2 start;
+    Eigen::Vector2d goal;
+    double clearance_radius;
+    double cost;
+    const char* moves;
+  };
+  const Course course = PaperCourse();
+  const Fog table = CorridorWithTable();
+  const std::vector<Case> cases = {
+      {"course", course.fog, course.start_G, course.goal_G, 0.6, 10.148540144593401,
+       "w07 t1 w1 t2 t3 s33 t2 s2 w2 t1 w1 t0 w02 u0 w04 u0 w05 d0 w04 d0 w02 t1 t2 t3 t4 s417 "
+       "w43 c4 t3 t2 t1 t0 c021"},
+      {"table", table, {0.3, 0.9, 0.0}, {2.9, 1.2}, 0.6, 7.4029926386806872,
+       "t1 w17 t0 w02 c032 w017"},
+      {"table straight", table, {0.3, 1.2, 0.0}, {2.9, 1.2}, 0.6, 6.9786646604855251,
+       "w016 c032 w017"},
+      {"cluttered 2", ClutteredFog(2), {0.14, 0.58, 0.3}, {1.30, 0.62}, 0.3, 5.8225430496183748,
+       "t0 tf te td wd4 te we3 tf wf t0 w0 u0 w0 s022 d0 s02 w0 t1 w1 t0 w04 tf wf2 te we2 td wd "
+       "tc wc5"},
+      {"cluttered 4", ClutteredFog(4), {0.14, 0.58, 0.3}, {1.30, 0.62}, 0.3, 3.8739182915732773,
+       "t0 w0 s08 t1 w15 t0 w0 u0 w0 d0 w09 tf wf te we2 td wd tc wc6"},
+  };
+  for (const Case& c : cases) {
+    PlannerParams p;
+    p.clearance_radius = c.clearance_radius;
+    const PlanResult r = Plan(c.fog, c.start, c.goal, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk) << c.name;
+    EXPECT_NEAR(r.cost, c.cost, 1e-9 * c.cost) << c.name;
+    EXPECT_NEAR(r.cost, BruteForceCost(c.fog, c.start, c.goal, p, Posture::kUpright),
+                1e-9 * c.cost)
+        << c.name;
+    EXPECT_EQ(MovesOf(r), c.moves) << c.name;
+  }
 }
 
 TEST(Lattice, HeuristicIsConsistent) {
