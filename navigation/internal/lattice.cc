@@ -515,20 +515,20 @@ void Lattice::ComputePermissions() {
 void Lattice::ComputeCellCosts() {
   const perception::GridWindow& w = fog_.window;
   cell_cost_.assign(size_t(num_cells_), 0.0);
-  // falloff disc, in cells
+  // falloff disc, in cells, row by row: row dy spans dx in [-half[dy + r], half[dy + r]] (half
+  // -1 for an empty row), its falloffs at falloff[(dy + r) * (2 r + 1) + dx + r]
   const double radius_cells = p_.clearance_radius / w.resolution;
-  struct DiscCell {
-    int dx, dy;
-    double falloff;
-  };
-  std::vector<DiscCell> disc;
   const int r = int(std::ceil(radius_cells));
-  if (p_.clearance_weight > 0 && radius_cells > 0) {
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const double d = std::hypot(double(dx), double(dy));
-        if (d < radius_cells) disc.push_back({dx, dy, 1.0 - d / radius_cells});
-      }
+  const bool disc = p_.clearance_weight > 0 && radius_cells > 0;
+  const int span = 2 * r + 1;
+  std::vector<int> half(size_t(span), -1);
+  std::vector<double> falloff(size_t(span) * size_t(span), 0.0);
+  for (int dy = -r; dy <= r && disc; ++dy) {
+    for (int dx = -r; dx <= r; ++dx) {
+      const double d = std::hypot(double(dx), double(dy));
+      if (!(d < radius_cells)) continue;
+      half[size_t(dy + r)] = std::max(half[size_t(dy + r)], std::abs(dx));
+      falloff[size_t(dy + r) * size_t(span) + size_t(dx + r)] = 1.0 - d / radius_cells;
     }
   }
   auto blocking = [](CellType t) { return t == CellType::kObstacle || t == CellType::kBorder; };
@@ -536,7 +536,7 @@ void Lattice::ComputeCellCosts() {
     return t == CellType::kFloor || t == CellType::kStairs || t == CellType::kTunnel ||
            t == CellType::kBorder;
   };
-  for (int iy = 0; iy < w.size_y && !disc.empty(); ++iy) {
+  for (int iy = 0; iy < w.size_y && disc; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
       const CellType t = fog_.type[i];
@@ -568,11 +568,12 @@ void Lattice::ComputeCellCosts() {
       rel = std::clamp(rel, 0.0, p_.clearance_height_cap);
       const double weight = p_.clearance_weight * rel / p_.clearance_height_ref;
       if (!(weight > 0)) continue;
-      for (const DiscCell& c : disc) {
-        const int nx = ix + c.dx, ny = iy + c.dy;
-        if (!w.Contains(nx, ny)) continue;
-        double& cost = cell_cost_[size_t(w.Index(nx, ny))];
-        cost = std::max(cost, weight * c.falloff);
+      for (int ny = std::max(0, iy - r); ny <= std::min(w.size_y - 1, iy + r); ++ny) {
+        const int m = half[size_t(ny - iy + r)];
+        const int x0 = std::max(0, ix - m), x1 = std::min(w.size_x - 1, ix + m);
+        double* cost = &cell_cost_[size_t(w.Index(0, ny))];
+        const double* row = &falloff[size_t(ny - iy + r) * size_t(span) + size_t(r)];  // dx = 0
+        for (int nx = x0; nx <= x1; ++nx) cost[nx] = std::max(cost[nx], weight * row[nx - ix]);
       }
     }
   }
