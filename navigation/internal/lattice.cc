@@ -139,7 +139,7 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
   }
 }
 
-void SearchMemory::Begin(int num_states) {
+uint32_t SearchMemory::Begin(int num_states) {
   // generations live in the upper 28 bits of the stamps; start over before they wrap
   if (generation >= (1u << 27)) {
     generation = 0;
@@ -156,6 +156,7 @@ void SearchMemory::Begin(int num_states) {
     move.resize(n);
     heap_position.resize(n);
   }
+  return generation;
 }
 
 void LatticeShapes::Build(const PlannerParams& p, double resolution) {
@@ -446,11 +447,6 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
   if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
   if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
-  int gx = 0, gy = 0;
-  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
-  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
-
   static_cast<LatticeShapes&>(*this) = CachedShapes(p, w.resolution);
   for (int k = 0; k < kNumHeadings; ++k) {
     footprint_index_[k].clear();
@@ -463,9 +459,21 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   ComputeLevelRanges();
   ComputePermissions();
   ComputeCellCosts();
-  memory_->Begin(NumStates());
+  valid_generation_ = memory_->Begin(NumStates());
+  heuristic_on_ = heuristic;
+  SetEnd(end);
+}
+
+void Lattice::SetEnd(End end) {
+  const perception::GridWindow& w = fog_.window;
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
+  end_ = end;
+  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
+  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
+  has_end_ = false;
   ComputeTerminalCosts();
-  if (heuristic) {
+  if (heuristic_on_) {
     ComputeHeuristic();
   } else {
     heuristic_.assign(2 * size_t(num_cells_), 0.0);
@@ -1061,11 +1069,11 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
 
 uint32_t Lattice::StateFlags(int s) {
   uint32_t& v = memory_->valid_stamp[size_t(s)];
-  if ((v >> 4) != memory_->generation) {
+  if ((v >> 4) != valid_generation_) {
     const int cell = CellOfState(s), heading = HeadingOfState(s), q = int(PostureOfState(s));
     const bool fits = FootprintFits(cell, heading, q);
     const int touch = fits && q == 0 ? BodyTouches(cell, heading) : kNoTouch;
-    v = (memory_->generation << 4) | (fits ? 1u : 2u) | (uint32_t(touch) << 2);
+    v = (valid_generation_ << 4) | (fits ? 1u : 2u) | (uint32_t(touch) << 2);
   }
   return v & 15u;
 }

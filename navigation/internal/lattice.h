@@ -52,9 +52,10 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
                               std::vector<double>* out);
 
 // Per-state scratch arrays reused from query to query so that a search neither allocates nor
-// clears them: an entry counts only if its stamp carries the current generation.
+// clears them: an entry counts only if its stamp carries the generation of its query (a
+// lattice's for the validity cache, a search's for the search state).
 struct SearchMemory {
-  uint32_t generation = 0;
+  uint32_t generation = 0;  // the latest query's
   // generation << 4 | 1 (valid) or 2 (invalid) | touch << 2 (valid and standing: how the body
   // meets the map, Lattice::kNoTouch, kEdgeTouch or kTouch)
   std::vector<uint32_t> valid_stamp;
@@ -63,8 +64,8 @@ struct SearchMemory {
   std::vector<int32_t> parent;  // a state, or -1 - seed index for seeds
   std::vector<Move> move;
   std::vector<int32_t> heap_position;  // index in the open list while a state is in it
-  // Starts a query over num_states states: new generation, arrays grown as needed.
-  void Begin(int num_states);
+  // Starts a query over num_states states: returns its new generation, arrays grown as needed.
+  uint32_t Begin(int num_states);
 };
 
 // Where a search may end (Lattice::TerminalCost).
@@ -143,8 +144,10 @@ class Lattice : private LatticeShapes {
   // Aborts if the FOG's arrays do not match its window.
   Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
           SearchMemory* memory = nullptr, End end = End::kGoal, bool heuristic = true);
+  // Makes the lattice end searches as `end` says instead (terminal costs and heuristic anew),
+  // keeping what it knows of the map and of which states are valid.
+  void SetEnd(End end);
   SearchMemory& memory() { return *memory_; }
-  uint32_t generation() const { return memory_->generation; }
 
   int NumStates() const { return num_cells_ * 2 * kNumHeadings; }
   int StateIndex(int ix, int iy, int heading, Posture posture) const {
@@ -307,6 +310,8 @@ class Lattice : private LatticeShapes {
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
   SearchMemory own_memory_;
   SearchMemory* memory_ = nullptr;
+  uint32_t valid_generation_ = 0;  // the generation of this lattice's valid_stamp entries
+  bool heuristic_on_ = true;       // the constructor's `heuristic`
 };
 
 }  // namespace fognav::navigation::internal

@@ -195,6 +195,31 @@ TEST(Lattice, FasterSearchKeepsThePlans) {
   }
 }
 
+// Plan's fallback for a goal beyond the window that no way out leads toward searches the
+// lattice of its first search again with the other end (Lattice::SetEnd): the plan is the one a
+// fresh lattice gives (PlanToward), state for state. The way out is a wall's L-shaped slot too
+// narrow to turn the corner in, which only the full first search shows to be closed.
+TEST(Lattice, FallbackOnTheSameLatticeGivesTheFreshPlan) {
+  const PlannerParams p;
+  Fog fog = FlatFog(100, 100, 0.04);
+  FillBox(&fog, 2.0, 0.0, 2.4, 4.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.96, 1.0, 2.26, 1.16, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.0, 2.26, 1.8, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.64, 2.44, 1.8, CellType::kFloor, 0.0f);
+  const Pose2 start{0.5, 2.02, 0.0};
+  const Eigen::Vector2d goal(5.0, 2.02);  // beyond the wall and the window
+  const PlanResult fallback = Plan(fog, start, goal, p);
+  const PlanResult fresh = PlanToward(fog, start, goal, p);
+  ASSERT_EQ(fresh.status, PlanStatus::kOk);
+  ASSERT_EQ(fallback.status, PlanStatus::kOk);
+  EXPECT_FALSE(fallback.reaches_goal);
+  EXPECT_LT(fallback.path.back().pose_G.x, 2.0);  // short of the wall
+  EXPECT_EQ(fallback.cost, fresh.cost);
+  EXPECT_EQ(fallback.expanded, fresh.expanded);
+  EXPECT_EQ(MovesOf(fallback), MovesOf(fresh));
+  EXPECT_GT(fallback.path.size(), 5u);
+}
+
 TEST(Lattice, HeuristicIsConsistent) {
   const PlannerParams p;
   for (uint32_t seed = 1; seed <= 4; ++seed) {
