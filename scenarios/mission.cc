@@ -1290,6 +1290,12 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   for (const char* stage : {"render", "stereo", "segmentation", "mapping", "planning", "control"}) {
     timing_ms[stage] = perception::Median(timing[stage]);
   }
+  // the slow plans: the planning stage's 95th percentile (nearest rank) and maximum
+  std::vector<double> plan_ms = timing["planning"];
+  std::sort(plan_ms.begin(), plan_ms.end());
+  timing_ms["planning_p95"] =
+      plan_ms.empty() ? 0.0 : plan_ms[size_t(std::ceil(0.95 * double(plan_ms.size()))) - 1];
+  timing_ms["planning_max"] = plan_ms.empty() ? 0.0 : plan_ms.back();
   nlohmann::json report = {
       {"scenario", scenario.name},
       {"success", success},
