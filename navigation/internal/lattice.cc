@@ -239,8 +239,7 @@ void LatticeShapes::Build(const PlannerParams& p, double resolution) {
   // the standing body beyond the soles' footprint
   {
     if (!(body_back >= 0 && body_front >= 0)) Die("Plan: body extents must not be negative");
-    body_outer_radius_cells_ =
-        std::hypot(std::max(body_back, body_front), body_half) / resolution;
+    body_outer_radius_cells_ = std::hypot(std::max(body_back, body_front), body_half) / resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
       std::vector<CellStep>& extra = body_extra_[k];
@@ -396,11 +395,10 @@ namespace {
 const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution) {
   // every PlannerParams field that LatticeShapes::Build reads
   using Key = std::array<double, 17>;
-  const Key key = {resolution,        p.shoulder_width, p.depth,        p.crawl_length,
-                   p.crawl_width,     p.crawl_offset,   p.margin,       p.level_margin,
-                   p.stance_width,    p.body_back,      p.body_front,   p.arm_reach,
-                   p.head_reach,      p.max_step_length, p.max_step_sideways,
-                   p.max_stairs_heading_error,          p.kneel_offset};
+  const Key key = {resolution, p.shoulder_width, p.depth, p.crawl_length, p.crawl_width,
+                   p.crawl_offset, p.margin, p.level_margin, p.stance_width, p.body_back,
+                   p.body_front, p.arm_reach, p.head_reach, p.max_step_length,
+                   p.max_step_sideways, p.max_stairs_heading_error, p.kneel_offset};
   thread_local std::vector<std::pair<Key, std::unique_ptr<LatticeShapes>>> cache;
   for (const auto& [k, shapes] : cache) {
     if (k == key) return *shapes;
