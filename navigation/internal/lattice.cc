@@ -853,102 +853,101 @@ void Lattice::ComputeHeuristic() {
   // edge maps to a relaxed path that costs no more (a step up or down of m lattice steps to the
   // m relaxed steps along its line, whose cells its sweep keeps open and within h_floor of its
   // two levels; one a little across its heading to a relaxed edge of its own at the stairs
-  // factor without cell costs), so this is admissible and consistent.
-  const perception::GridWindow& w = fog_.window;
+  // factor without cell costs), so this is admissible and consistent. The Dijkstra that
+  // computes it settles nodes only as far as Heuristic asks (SettleNext).
   const size_t n = size_t(num_cells_);
-  std::vector<uint8_t> open(2 * n);
+  h_open_.assign(2 * n, 0);
   for (size_t i = 0; i < n; ++i) {
     for (int q = 0; q < 2; ++q) {
       const double in = inner_radius_cells_[q] - kEps;
       const bool centre_ok = ok_[q][i] || MayBeLevelBorder(i, q);
-      open[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
+      h_open_[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
     }
   }
-  const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
-  const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
-  const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
-  std::vector<uint8_t> stairs(n);
-  for (size_t i = 0; i < n; ++i) stairs[i] = fog_.type[i] == CellType::kStairs;
-  // cell offsets of the 16 steps
-  int step_offset[kNumHeadings];
-  for (int k = 0; k < kNumHeadings; ++k) step_offset[k] = kSteps[k].dy * w.size_x + kSteps[k].dx;
-
   // the climbs across their heading, which no line of lattice steps follows, in both directions
-  std::vector<std::pair<CellStep, double>> aside;  // offset, length in metres
+  h_aside_.clear();
   for (int k = 0; k < kNumHeadings; ++k) {
     for (const Climb& c : climbs_[k]) {
       if (std::abs(c.across) <= kEps) continue;
-      const bool known = std::any_of(aside.begin(), aside.end(), [&](const auto& e) {
+      const bool known = std::any_of(h_aside_.begin(), h_aside_.end(), [&](const auto& e) {
         return e.first.dx == c.to.dx && e.first.dy == c.to.dy;
       });
-      if (!known) aside.push_back({c.to, c.length});
+      if (!known) h_aside_.push_back({c.to, c.length});
     }
   }
-
   // Dijkstra from every end node at once; a node is queued while its stamp is 1, done at 2
   heuristic_.assign(2 * n, kInf);
-  std::vector<uint8_t> stamp(2 * n, 0);
-  std::vector<int32_t> position(2 * n);
-  std::vector<OpenEntry> heap;
-  heap.reserve(2 * n);
-  OpenList queue(&heap, &position);
-  auto relax = [&](int node, double h) {
-    if (stamp[size_t(node)] == 2 || h >= heuristic_[size_t(node)]) return;
-    heuristic_[size_t(node)] = h;
-    queue.Push({h, 0.0f, node}, stamp[size_t(node)] == 1);
-    stamp[size_t(node)] = 1;
-  };
+  h_stamp_.assign(2 * n, 0);
+  h_position_.resize(2 * n);
+  h_heap_.clear();
+  h_heap_.reserve(2 * n);
   for (size_t node = 0; node < 2 * n; ++node) {
-    if (open[node]) relax(int(node), terminal_[node / 2]);
+    if (h_open_[node]) Relax(int(node), terminal_[node / 2]);
   }
+}
+
+void Lattice::Relax(int node, double h) {
+  if (h_stamp_[size_t(node)] == 2 || h >= heuristic_[size_t(node)]) return;
+  heuristic_[size_t(node)] = h;
+  OpenList(&h_heap_, &h_position_, /*clear=*/false)
+      .Push({h, 0.0f, node}, h_stamp_[size_t(node)] == 1);
+  h_stamp_[size_t(node)] = 1;
+}
+
+void Lattice::SettleNext() {
+  const perception::GridWindow& w = fog_.window;
+  const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
+  const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
+  const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
   const float* height = floor_h_.data();
-  while (!queue.empty()) {
-    const OpenEntry top = queue.Pop();
-    const int node = top.state;
-    const double h = top.f;
-    stamp[size_t(node)] = 2;
-    const int i = node / 2, q = node % 2;
-    const int ix = i % w.size_x, iy = i / w.size_x;
-    // posture changes move the origin by the kneel offset along the heading; the set of
-    // offsets is symmetric, so the reversed edges are the same
-    for (int k = 0; k < kNumHeadings; ++k) {
-      const int px = ix + kneel_steps_[k] * kSteps[k].dx, py = iy + kneel_steps_[k] * kSteps[k].dy;
-      if (!w.Contains(px, py)) continue;
-      const int other = 2 * w.Index(px, py) + (q ^ 1);
-      if (open[size_t(other)]) relax(other, h + p_.posture_change_cost);
+  const OpenEntry top = OpenList(&h_heap_, &h_position_, false).Pop();
+  const int node = top.state;
+  const double h = top.f;
+  h_stamp_[size_t(node)] = 2;
+  const int i = node / 2, q = node % 2;
+  const int ix = i % w.size_x, iy = i / w.size_x;
+  // posture changes move the origin by the kneel offset along the heading; the set of
+  // offsets is symmetric, so the reversed edges are the same
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const int px = ix + kneel_steps_[k] * kSteps[k].dx, py = iy + kneel_steps_[k] * kSteps[k].dy;
+    if (!w.Contains(px, py)) continue;
+    const int other = 2 * w.Index(px, py) + (q ^ 1);
+    if (h_open_[size_t(other)]) Relax(other, h + p_.posture_change_cost);
+  }
+  // a step up or down crosses cells between its ends up to h_floor beyond its two levels
+  const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
+  const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
+  for (int k = 0; k < kNumHeadings; ++k) {
+    if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
+    const int j = i + kSteps[k].dy * w.size_x + kSteps[k].dx;
+    const int other = 2 * j + q;
+    if (!h_open_[size_t(other)] || h_stamp_[size_t(other)] == 2) continue;
+    double dh = 0.0;
+    if (std::isfinite(height[i]) && std::isfinite(height[j])) {
+      dh = std::abs(double(height[j]) - double(height[i]));
     }
-    // a step up or down crosses cells between its ends up to h_floor beyond its two levels
-    const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
-    const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
-    for (int k = 0; k < kNumHeadings; ++k) {
-      if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
-      const int j = i + step_offset[k];
-      const int other = 2 * j + q;
-      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
-      double dh = 0.0;
-      if (std::isfinite(height[i]) && std::isfinite(height[j])) {
-        dh = std::abs(double(height[j]) - double(height[i]));
-      }
-      if (dh > max_dh) continue;
-      double factor = crawl_factor;
-      if (q == 0) factor = (stairs[size_t(i)] || stairs[size_t(j)] || dh > p_.h_floor)
-                               ? stairs_factor : upright_factor;
-      relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
-                                                          cell_cost_[size_t(j)])));
+    if (dh > max_dh) continue;
+    double factor = crawl_factor;
+    if (q == 0) {
+      const bool stairs = fog_.type[size_t(i)] == CellType::kStairs ||
+                          fog_.type[size_t(j)] == CellType::kStairs || dh > p_.h_floor;
+      factor = stairs ? stairs_factor : upright_factor;
     }
-    if (q == 1) continue;
-    for (const auto& [e, length] : aside) {
-      const int jx = ix + e.dx, jy = iy + e.dy;
-      if (!w.Contains(jx, jy)) continue;
-      const int j = w.Index(jx, jy);
-      const int other = 2 * j;
-      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
-      if (std::isfinite(height[i]) && std::isfinite(height[j]) &&
-          std::abs(double(height[j]) - double(height[i])) > max_dh) {
-        continue;
-      }
-      relax(other, h + length * stairs_factor);
+    Relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
+                                                        cell_cost_[size_t(j)])));
+  }
+  if (q == 1) return;
+  for (const auto& [e, length] : h_aside_) {
+    const int jx = ix + e.dx, jy = iy + e.dy;
+    if (!w.Contains(jx, jy)) continue;
+    const int j = w.Index(jx, jy);
+    const int other = 2 * j;
+    if (!h_open_[size_t(other)] || h_stamp_[size_t(other)] == 2) continue;
+    if (std::isfinite(height[i]) && std::isfinite(height[j]) &&
+        std::abs(double(height[j]) - double(height[i])) > max_dh) {
+      continue;
     }
+    Relax(other, h + length * stairs_factor);
   }
 }
 

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "navigation/internal/open_list.h"
 #include "navigation/planner.h"
 #include "perception/mapping.h"
 #include "perception/types.h"
@@ -174,7 +176,12 @@ class Lattice : private LatticeShapes {
   bool HasEnd() const { return has_end_; }
   // Consistent lower bound on the cost from state s to the end of a path (+infinity when the
   // relaxed problem already shows that none exists).
-  double Heuristic(int s) const { return heuristic_[size_t(s / kNumHeadings)]; }
+  // Settles the heuristic's Dijkstra as far as state s needs.
+  double Heuristic(int s) {
+    const size_t node = size_t(s / kNumHeadings);
+    while (!h_heap_.empty() && h_stamp_[node] != 2) SettleNext();
+    return heuristic_[node];
+  }
 
   bool GoalInWindow() const { return goal_in_window_; }
   // Whether some valid state lies in the goal region (only meaningful with the goal in window).
@@ -268,6 +275,9 @@ class Lattice : private LatticeShapes {
   // End::kBeyond: from the goal region's terminal costs to those of the window's edge
   void ComputeBeyondTerminalCosts();
   void ComputeHeuristic();
+  // The heuristic's Dijkstra: lowers a node's tentative value; settles the next node.
+  void Relax(int node, double h);
+  void SettleNext();
   // Floor height change from one cell to another (0 if either has no floor height).
   double HeightStep(int from_cell, int to_cell) const;
   // Central-difference floor height gradient at a cell (metres per cell), over the neighbours
@@ -308,6 +318,12 @@ class Lattice : private LatticeShapes {
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
+  // the heuristic's Dijkstra, per node (cell * 2 + posture): open in the relaxed graph, stamp
+  // (1 queued, 2 settled: heuristic_ is final), place in h_heap_; the climbs across a heading
+  std::vector<uint8_t> h_open_, h_stamp_;
+  std::vector<int32_t> h_position_;
+  std::vector<OpenEntry> h_heap_;
+  std::vector<std::pair<CellStep, double>> h_aside_;  // offset, length in metres
   SearchMemory own_memory_;
   SearchMemory* memory_ = nullptr;
   uint32_t valid_generation_ = 0;  // the generation of this lattice's valid_stamp entries

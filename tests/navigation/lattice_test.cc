@@ -220,6 +220,35 @@ TEST(Lattice, FallbackOnTheSameLatticeGivesTheFreshPlan) {
   EXPECT_GT(fallback.path.size(), 5u);
 }
 
+// The heuristic's Dijkstra settles only as far as the search asks: its values do not depend on
+// the order in which the states are asked for (the goal in the window, beyond it, toward it).
+TEST(Lattice, HeuristicIsTheSameInWhateverOrderItIsAsked) {
+  const PlannerParams p;
+  std::mt19937 rng(7);
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const Fog fog = ClutteredFog(seed);
+    for (const auto& [goal, end] : {std::pair(Eigen::Vector2d(1.30, 0.62), End::kGoal),
+                                    std::pair(Eigen::Vector2d(3.0, 0.9), End::kGoal),
+                                    std::pair(Eigen::Vector2d(3.0, 0.9), End::kToward)}) {
+      Lattice ascending(fog, goal, p, nullptr, end), descending(fog, goal, p, nullptr, end);
+      Lattice sampled(fog, goal, p, nullptr, end);
+      const int n = ascending.NumStates();
+      std::vector<double> down(size_t(n), 0.0);
+      for (int s = n - 1; s >= 0; --s) down[size_t(s)] = descending.Heuristic(s);
+      std::uniform_int_distribution<int> any(0, n - 1);
+      for (int i = 0; i < 50; ++i) sampled.Heuristic(any(rng));
+      int finite = 0;
+      for (int s = 0; s < n; ++s) {
+        const double h = ascending.Heuristic(s);
+        ASSERT_EQ(h, down[size_t(s)]) << "state " << s;
+        ASSERT_EQ(h, sampled.Heuristic(s)) << "state " << s;
+        finite += h < kInf;
+      }
+      EXPECT_GT(finite, n / 4) << "seed " << seed;
+    }
+  }
+}
+
 TEST(Lattice, HeuristicIsConsistent) {
   const PlannerParams p;
   for (uint32_t seed = 1; seed <= 4; ++seed) {
