@@ -70,14 +70,13 @@ bool GoalInWindow(const perception::GridWindow& w, const Eigen::Vector2d& goal_G
   return w.Contains(gx, gy);
 }
 
-// A* from the start to the end state of least path cost plus terminal cost (internal::End)
-PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
-                  const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture,
-                  internal::End end) {
+// A* on `lattice` (built on `fog` with this thread's memory) from the start to the end state
+// of least path cost plus terminal cost (internal::End)
+PlanResult Search(internal::Lattice& lattice, const perception::Fog& fog,
+                  const perception::Pose2& start_G, Posture start_posture) {
   // per-state arrays and the open list are reused between calls on this thread
   thread_local std::vector<internal::OpenEntry> thread_heap;
-  internal::SearchMemory& memory = ThreadMemory();
-  internal::Lattice lattice(fog, goal_G, p, &memory, end);
+  internal::SearchMemory& memory = lattice.memory();
   if (!lattice.HasEnd()) return NoPath(NoPathReason::kGoalEnclosed);
 
   // where the search may start and end
@@ -96,7 +95,7 @@ PlanResult Search(const perception::Fog& fog, const perception::Pose2& start_G,
   std::vector<double>& g = memory.g;
   std::vector<int32_t>& parent = memory.parent;
   std::vector<Move>& move_in = memory.move;
-  const uint32_t reached = lattice.generation() << 1, closed = reached | 1u;
+  const uint32_t reached = memory.Begin(lattice.NumStates()) << 1, closed = reached | 1u;
   auto g_of = [&](size_t s) { return (stamp[s] & ~1u) == reached ? g[s] : kInf; };
   // a state is in the open list exactly while its stamp is `reached`
   internal::OpenList open(&thread_heap, &memory.heap_position);
@@ -281,11 +280,14 @@ size_t FirstBlockedPose(const perception::Fog& fog, const PlanResult& plan,
 
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p, Posture start_posture) {
-  PlanResult r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kGoal);
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kGoal);
+  PlanResult r = Search(lattice, fog, start_G, start_posture);
   if (r.status == PlanStatus::kNoPath && r.reason != NoPathReason::kStartBlocked &&
       !GoalInWindow(fog.window, goal_G)) {
-    // no way out toward the goal yet (a table the window's edge cuts): as near it as may be
-    r = Search(fog, start_G, goal_G, p, start_posture, internal::End::kToward);
+    // no way out toward the goal yet (a table the window's edge cuts): as near it as may be, on
+    // the same lattice (what it knows of the map and the valid states holds for any end)
+    lattice.SetEnd(internal::End::kToward);
+    r = Search(lattice, fog, start_G, start_posture);
   }
   return r;
 }
@@ -293,13 +295,15 @@ PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
 PlanResult PlanToward(const perception::Fog& fog, const perception::Pose2& start_G,
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture) {
-  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kToward);
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kToward);
+  return Search(lattice, fog, start_G, start_posture);
 }
 
 PlanResult PlanBeyond(const perception::Fog& fog, const perception::Pose2& start_G,
                       const Eigen::Vector2d& goal_G, const PlannerParams& p,
                       Posture start_posture) {
-  return Search(fog, start_G, goal_G, p, start_posture, internal::End::kBeyond);
+  internal::Lattice lattice(fog, goal_G, p, &ThreadMemory(), internal::End::kBeyond);
+  return Search(lattice, fog, start_G, start_posture);
 }
 
 std::vector<PathSegment> SegmentPath(const PlanResult& plan) {

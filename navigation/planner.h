@@ -206,7 +206,7 @@ struct PlanResult {
 // unreachable goal is a result with status kNoPath and its reason. Aborts if the FOG's arrays do
 // not match its window or `p` has non-positive sizes or factors or negative costs. Keeps per-state scratch arrays
 // per thread between calls (about 8 MB for a 100 x 100 window), so repeated plans do not
-// allocate them again; a plan on the 100 x 100 course takes about 13 ms (Planning/course).
+// allocate them again; a plan on the 100 x 100 course takes about 10 ms (Planning/course).
 PlanResult Plan(const perception::Fog& fog, const perception::Pose2& start_G,
                 const Eigen::Vector2d& goal_G, const PlannerParams& p,
                 Posture start_posture = Posture::kUpright);

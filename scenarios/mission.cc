@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -157,6 +158,14 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
     timing_ms[stage] = perception::Median(it == robot.timing().end() ? std::vector<double>{}
                                                                      : it->second);
   }
+  // the slow plans: the planning stage's 95th percentile (nearest rank) and maximum
+  const auto planning = robot.timing().find("planning");
+  std::vector<double> plan_ms =
+      planning == robot.timing().end() ? std::vector<double>{} : planning->second;
+  std::sort(plan_ms.begin(), plan_ms.end());
+  timing_ms["planning_p95"] =
+      plan_ms.empty() ? 0.0 : plan_ms[size_t(std::ceil(0.95 * double(plan_ms.size()))) - 1];
+  timing_ms["planning_max"] = plan_ms.empty() ? 0.0 : plan_ms.back();
   auto null_if_empty = [](const std::string& s) {
     return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
   };

@@ -1,11 +1,13 @@
 #include "navigation/internal/lattice.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <queue>
 #include <utility>
 
@@ -137,7 +139,7 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
   }
 }
 
-void SearchMemory::Begin(int num_states) {
+uint32_t SearchMemory::Begin(int num_states) {
   // generations live in the upper 28 bits of the stamps; start over before they wrap
   if (generation >= (1u << 27)) {
     generation = 0;
@@ -154,49 +156,13 @@ void SearchMemory::Begin(int num_states) {
     move.resize(n);
     heap_position.resize(n);
   }
+  return generation;
 }
 
-Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
-                 SearchMemory* memory, End end, bool heuristic)
-    : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
-  const perception::GridWindow& w = fog.window;
-  if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
-  num_cells_ = w.NumCells();
-  if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
-    Die("Plan: FOG type/height arrays do not match its window");
-  }
-  const double min_factor = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor,
-                                      p.stairs_factor, p.crawl_factor,
-                                      p.crawl_factor * p.backward_factor});
-  if (!(min_factor > 0)) Die("Plan: move cost factors must be positive");
-  if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
-        p.clearance_weight >= 0 && p.exit_factor >= 0)) {
-    Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
-  }
-  if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
-  if (!(p.exit_band >= 0)) Die("Plan: exit_band must not be negative");
-  if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
-  if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
-  if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
-    Die("Plan: level_margin must be in [0, margin]");
-  }
-  if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
-  if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
-  if (!(p.hidden_reach >= 0 && p.hidden_reach <= 1.0)) {
-    Die("Plan: hidden_reach must lie in [0, 1] m");
-  }
-  if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
-  if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
-  if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
-  int gx = 0, gy = 0;
-  w.CellOf(goal_G.x(), goal_G.y(), &gx, &gy);
-  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
-  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
-
+void LatticeShapes::Build(const PlannerParams& p, double resolution) {
   cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
-  // lattice geometry
   for (int k = 0; k < kNumHeadings; ++k) {
-    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * w.resolution;
+    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * resolution;
     turn_angle_[k] = std::abs(WrapAngle(HeadingYaw((k + 1) % kNumHeadings) - HeadingYaw(k)));
     kneel_steps_[k] = int(std::lround(p.kneel_offset / step_length_[k]));
   }
@@ -209,7 +175,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   }
   auto in_frame = [&](int k, int dx, int dy) {
     const double c = cos_k[k], s = sin_k[k];
-    return Eigen::Vector2d((dx * c + dy * s) * w.resolution, (-dx * s + dy * c) * w.resolution);
+    return Eigen::Vector2d((dx * c + dy * s) * resolution, (-dx * s + dy * c) * resolution);
   };
   // the offsets up to `reach` cells away whose centres lie in [u_lo, u_hi] x [v_lo, v_hi] of
   // the frame of heading k
@@ -252,8 +218,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
     if (!(a > 0 && b > 0)) Die("Plan: footprint sizes must be positive");
     if (std::abs(offset) >= a) Die("Plan: crawl_offset must be inside the crawling footprint");
     // circles about the robot's origin inside and around the rectangle
-    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / w.resolution;
-    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / w.resolution;
+    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / resolution;
+    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / resolution;
     const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
     outer_reach_cells_[q] = 0;
     for (int k = 0; k < kNumHeadings; ++k) {
@@ -273,8 +239,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   // the standing body beyond the soles' footprint
   {
     if (!(body_back >= 0 && body_front >= 0)) Die("Plan: body extents must not be negative");
-    body_outer_radius_cells_ =
-        std::hypot(std::max(body_back, body_front), body_half) / w.resolution;
+    body_outer_radius_cells_ = std::hypot(std::max(body_back, body_front), body_half) / resolution;
     const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
     for (int k = 0; k < kNumHeadings; ++k) {
       std::vector<CellStep>& extra = body_extra_[k];
@@ -317,8 +282,8 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
       const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
       std::vector<double> cos_j(static_cast<size_t>(n)), sin_j(static_cast<size_t>(n));
       for (int j = 1; j < n; ++j) {
-        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * w.resolution;
-        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * w.resolution;
+        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * resolution;
+        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * resolution;
       }
       turn_soles_[k].clear();
       turn_body_[k].clear();
@@ -354,7 +319,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
 
   // the head's reach
   {
-    const double head = (p.head_reach + p.margin) / w.resolution + kEps;
+    const double head = (p.head_reach + p.margin) / resolution + kEps;
     const int reach = int(std::ceil(head));
     head_disc_.clear();
     for (int dy = -reach; dy <= reach; ++dy) {
@@ -389,7 +354,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   // do not add up to a step over a riser within the limit, the robot still climbs on its
   // heading), with the cells the standing footprint sweeps: centres in the rectangle from the
   // start footprint's back edge to the end footprint's front edge, as wide as the two side by side
-  const int reach_end = int(std::ceil(p.max_step_length / w.resolution + kEps));
+  const int reach_end = int(std::ceil(p.max_step_length / resolution + kEps));
   for (int k = 0; k < kNumHeadings; ++k) {
     const double a = half_along[0], b = half_across[0];
     climbs_[k].clear();
@@ -405,7 +370,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
         climb.to = {ex, ey};
         climb.length = length;
         climb.across = across;
-        const int reach = int(std::ceil((length + std::hypot(a, b)) / w.resolution)) + 1;
+        const int reach = int(std::ceil((length + std::hypot(a, b)) / resolution)) + 1;
         climb.swept =
             cells_in(k, reach, -a, along + a, std::min(0.0, across) - b, std::max(0.0, across) + b);
         const int n = std::max(std::abs(ex), std::abs(ey));
@@ -421,14 +386,92 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
              (x.length <= y.length + kEps && std::abs(x.across) < std::abs(y.across) - kEps);
     });
   }
+}
+
+namespace {
+
+// The shapes for p's sizes and the cell size, built on a thread's first use of them and kept (a
+// few robots' worth: the oldest go when more come).
+const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution) {
+  // every PlannerParams field that LatticeShapes::Build reads
+  using Key = std::array<double, 17>;
+  const Key key = {resolution, p.shoulder_width, p.depth, p.crawl_length, p.crawl_width,
+                   p.crawl_offset, p.margin, p.level_margin, p.stance_width, p.body_back,
+                   p.body_front, p.arm_reach, p.head_reach, p.max_step_length,
+                   p.max_step_sideways, p.max_stairs_heading_error, p.kneel_offset};
+  thread_local std::vector<std::pair<Key, std::unique_ptr<LatticeShapes>>> cache;
+  for (const auto& [k, shapes] : cache) {
+    if (k == key) return *shapes;
+  }
+  constexpr size_t kKept = 8;
+  if (cache.size() == kKept) cache.erase(cache.begin());
+  auto shapes = std::make_unique<LatticeShapes>();
+  shapes->Build(p, resolution);
+  cache.emplace_back(key, std::move(shapes));
+  return *cache.back().second;
+}
+
+}  // namespace
+
+Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
+                 SearchMemory* memory, End end, bool heuristic)
+    : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
+  const perception::GridWindow& w = fog.window;
+  if (w.size_x <= 0 || w.size_y <= 0 || !(w.resolution > 0)) Die("Plan: empty FOG window");
+  num_cells_ = w.NumCells();
+  if (fog.type.size() != size_t(num_cells_) || fog.height.size() != size_t(num_cells_)) {
+    Die("Plan: FOG type/height arrays do not match its window");
+  }
+  const double min_factor = std::min({p.walk_factor, p.backward_factor, p.sidestep_factor,
+                                      p.stairs_factor, p.crawl_factor,
+                                      p.crawl_factor * p.backward_factor});
+  if (!(min_factor > 0)) Die("Plan: move cost factors must be positive");
+  if (!(p.turn_cost_per_rad >= 0 && p.posture_change_cost >= 0 && p.unknown_penalty >= 0 &&
+        p.clearance_weight >= 0 && p.exit_factor >= 0)) {
+    Die("Plan: turn, posture change, unknown, clearance and exit costs must not be negative");
+  }
+  if (!(p.clearance_height_ref > 0)) Die("Plan: clearance_height_ref must be positive");
+  if (!(p.exit_band >= 0)) Die("Plan: exit_band must not be negative");
+  if (!(p.max_step_length > 0)) Die("Plan: max_step_length must be positive");
+  if (!(p.max_step_sideways >= 0)) Die("Plan: max_step_sideways must not be negative");
+  if (!(p.level_margin >= 0 && p.level_margin <= p.margin)) {
+    Die("Plan: level_margin must be in [0, margin]");
+  }
+  if (!(p.stance_width > 0)) Die("Plan: stance_width must be positive");
+  if (!(p.hand_low >= 0)) Die("Plan: hand_low must not be negative");
+  if (!(p.hidden_reach >= 0 && p.hidden_reach <= 1.0)) {
+    Die("Plan: hidden_reach must lie in [0, 1] m");
+  }
+  if (!(p.head_reach >= 0)) Die("Plan: head_reach must not be negative");
+  if (!(p.kneel_offset >= 0)) Die("Plan: kneel_offset must not be negative");
+  if (!(p.kneel_clear_reach >= 0)) Die("Plan: kneel_clear_reach must not be negative");
+  static_cast<LatticeShapes&>(*this) = CachedShapes(p, w.resolution);
+  for (int k = 0; k < kNumHeadings; ++k) {
+    footprint_index_[k].clear();
+    for (const CellStep& o : footprint_[0][k]) {
+      footprint_index_[k].push_back(o.dy * w.size_x + o.dx);
+    }
+  }
 
   ComputeFloorHeights();
   ComputeLevelRanges();
   ComputePermissions();
   ComputeCellCosts();
-  memory_->Begin(NumStates());
+  valid_generation_ = memory_->Begin(NumStates());
+  heuristic_on_ = heuristic;
+  SetEnd(end);
+}
+
+void Lattice::SetEnd(End end) {
+  const perception::GridWindow& w = fog_.window;
+  int gx = 0, gy = 0;
+  w.CellOf(goal_G_.x(), goal_G_.y(), &gx, &gy);
+  end_ = end;
+  goal_in_window_ = end == End::kGoal && w.Contains(gx, gy);
+  if (!w.Contains(gx, gy) && end_ == End::kGoal) end_ = End::kExit;
+  has_end_ = false;
   ComputeTerminalCosts();
-  if (heuristic) {
+  if (heuristic_on_) {
     ComputeHeuristic();
   } else {
     heuristic_.assign(2 * size_t(num_cells_), 0.0);
@@ -478,20 +521,20 @@ void Lattice::ComputePermissions() {
 void Lattice::ComputeCellCosts() {
   const perception::GridWindow& w = fog_.window;
   cell_cost_.assign(size_t(num_cells_), 0.0);
-  // falloff disc, in cells
+  // falloff disc, in cells, row by row: row dy spans dx in [-half[dy + r], half[dy + r]] (half
+  // -1 for an empty row), its falloffs at falloff[(dy + r) * (2 r + 1) + dx + r]
   const double radius_cells = p_.clearance_radius / w.resolution;
-  struct DiscCell {
-    int dx, dy;
-    double falloff;
-  };
-  std::vector<DiscCell> disc;
   const int r = int(std::ceil(radius_cells));
-  if (p_.clearance_weight > 0 && radius_cells > 0) {
-    for (int dy = -r; dy <= r; ++dy) {
-      for (int dx = -r; dx <= r; ++dx) {
-        const double d = std::hypot(double(dx), double(dy));
-        if (d < radius_cells) disc.push_back({dx, dy, 1.0 - d / radius_cells});
-      }
+  const bool disc = p_.clearance_weight > 0 && radius_cells > 0;
+  const int span = 2 * r + 1;
+  std::vector<int> half(size_t(span), -1);
+  std::vector<double> falloff(size_t(span) * size_t(span), 0.0);
+  for (int dy = -r; dy <= r && disc; ++dy) {
+    for (int dx = -r; dx <= r; ++dx) {
+      const double d = std::hypot(double(dx), double(dy));
+      if (!(d < radius_cells)) continue;
+      half[size_t(dy + r)] = std::max(half[size_t(dy + r)], std::abs(dx));
+      falloff[size_t(dy + r) * size_t(span) + size_t(dx + r)] = 1.0 - d / radius_cells;
     }
   }
   auto blocking = [](CellType t) { return t == CellType::kObstacle || t == CellType::kBorder; };
@@ -499,7 +542,7 @@ void Lattice::ComputeCellCosts() {
     return t == CellType::kFloor || t == CellType::kStairs || t == CellType::kTunnel ||
            t == CellType::kBorder;
   };
-  for (int iy = 0; iy < w.size_y && !disc.empty(); ++iy) {
+  for (int iy = 0; iy < w.size_y && disc; ++iy) {
     for (int ix = 0; ix < w.size_x; ++ix) {
       const size_t i = size_t(w.Index(ix, iy));
       const CellType t = fog_.type[i];
@@ -531,11 +574,12 @@ void Lattice::ComputeCellCosts() {
       rel = std::clamp(rel, 0.0, p_.clearance_height_cap);
       const double weight = p_.clearance_weight * rel / p_.clearance_height_ref;
       if (!(weight > 0)) continue;
-      for (const DiscCell& c : disc) {
-        const int nx = ix + c.dx, ny = iy + c.dy;
-        if (!w.Contains(nx, ny)) continue;
-        double& cost = cell_cost_[size_t(w.Index(nx, ny))];
-        cost = std::max(cost, weight * c.falloff);
+      for (int ny = std::max(0, iy - r); ny <= std::min(w.size_y - 1, iy + r); ++ny) {
+        const int m = half[size_t(ny - iy + r)];
+        const int x0 = std::max(0, ix - m), x1 = std::min(w.size_x - 1, ix + m);
+        double* cost = &cell_cost_[size_t(w.Index(0, ny))];
+        const double* row = &falloff[size_t(ny - iy + r) * size_t(span) + size_t(r)];  // dx = 0
+        for (int nx = x0; nx <= x1; ++nx) cost[nx] = std::max(cost[nx], weight * row[nx - ix]);
       }
     }
   }
@@ -809,102 +853,101 @@ void Lattice::ComputeHeuristic() {
   // edge maps to a relaxed path that costs no more (a step up or down of m lattice steps to the
   // m relaxed steps along its line, whose cells its sweep keeps open and within h_floor of its
   // two levels; one a little across its heading to a relaxed edge of its own at the stairs
-  // factor without cell costs), so this is admissible and consistent.
-  const perception::GridWindow& w = fog_.window;
+  // factor without cell costs), so this is admissible and consistent. The Dijkstra that
+  // computes it settles nodes only as far as Heuristic asks (SettleNext).
   const size_t n = size_t(num_cells_);
-  std::vector<uint8_t> open(2 * n);
+  h_open_.assign(2 * n, 0);
   for (size_t i = 0; i < n; ++i) {
     for (int q = 0; q < 2; ++q) {
       const double in = inner_radius_cells_[q] - kEps;
       const bool centre_ok = ok_[q][i] || MayBeLevelBorder(i, q);
-      open[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
+      h_open_[2 * i + size_t(q)] = centre_ok && !(in > 0 && blocked_d2_[q][i] <= in * in);
     }
   }
-  const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
-  const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
-  const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
-  std::vector<uint8_t> stairs(n);
-  for (size_t i = 0; i < n; ++i) stairs[i] = fog_.type[i] == CellType::kStairs;
-  // cell offsets of the 16 steps
-  int step_offset[kNumHeadings];
-  for (int k = 0; k < kNumHeadings; ++k) step_offset[k] = kSteps[k].dy * w.size_x + kSteps[k].dx;
-
   // the climbs across their heading, which no line of lattice steps follows, in both directions
-  std::vector<std::pair<CellStep, double>> aside;  // offset, length in metres
+  h_aside_.clear();
   for (int k = 0; k < kNumHeadings; ++k) {
     for (const Climb& c : climbs_[k]) {
       if (std::abs(c.across) <= kEps) continue;
-      const bool known = std::any_of(aside.begin(), aside.end(), [&](const auto& e) {
+      const bool known = std::any_of(h_aside_.begin(), h_aside_.end(), [&](const auto& e) {
         return e.first.dx == c.to.dx && e.first.dy == c.to.dy;
       });
-      if (!known) aside.push_back({c.to, c.length});
+      if (!known) h_aside_.push_back({c.to, c.length});
     }
   }
-
   // Dijkstra from every end node at once; a node is queued while its stamp is 1, done at 2
   heuristic_.assign(2 * n, kInf);
-  std::vector<uint8_t> stamp(2 * n, 0);
-  std::vector<int32_t> position(2 * n);
-  std::vector<OpenEntry> heap;
-  heap.reserve(2 * n);
-  OpenList queue(&heap, &position);
-  auto relax = [&](int node, double h) {
-    if (stamp[size_t(node)] == 2 || h >= heuristic_[size_t(node)]) return;
-    heuristic_[size_t(node)] = h;
-    queue.Push({h, 0.0f, node}, stamp[size_t(node)] == 1);
-    stamp[size_t(node)] = 1;
-  };
+  h_stamp_.assign(2 * n, 0);
+  h_position_.resize(2 * n);
+  h_heap_.clear();
+  h_heap_.reserve(2 * n);
   for (size_t node = 0; node < 2 * n; ++node) {
-    if (open[node]) relax(int(node), terminal_[node / 2]);
+    if (h_open_[node]) Relax(int(node), terminal_[node / 2]);
   }
+}
+
+void Lattice::Relax(int node, double h) {
+  if (h_stamp_[size_t(node)] == 2 || h >= heuristic_[size_t(node)]) return;
+  heuristic_[size_t(node)] = h;
+  OpenList(&h_heap_, &h_position_, /*clear=*/false)
+      .Push({h, 0.0f, node}, h_stamp_[size_t(node)] == 1);
+  h_stamp_[size_t(node)] = 1;
+}
+
+void Lattice::SettleNext() {
+  const perception::GridWindow& w = fog_.window;
+  const double upright_factor = std::min({p_.walk_factor, p_.backward_factor, p_.sidestep_factor});
+  const double stairs_factor = std::max(upright_factor, p_.stairs_factor);
+  const double crawl_factor = std::min(p_.crawl_factor, p_.crawl_factor * p_.backward_factor);
   const float* height = floor_h_.data();
-  while (!queue.empty()) {
-    const OpenEntry top = queue.Pop();
-    const int node = top.state;
-    const double h = top.f;
-    stamp[size_t(node)] = 2;
-    const int i = node / 2, q = node % 2;
-    const int ix = i % w.size_x, iy = i / w.size_x;
-    // posture changes move the origin by the kneel offset along the heading; the set of
-    // offsets is symmetric, so the reversed edges are the same
-    for (int k = 0; k < kNumHeadings; ++k) {
-      const int px = ix + kneel_steps_[k] * kSteps[k].dx, py = iy + kneel_steps_[k] * kSteps[k].dy;
-      if (!w.Contains(px, py)) continue;
-      const int other = 2 * w.Index(px, py) + (q ^ 1);
-      if (open[size_t(other)]) relax(other, h + p_.posture_change_cost);
+  const OpenEntry top = OpenList(&h_heap_, &h_position_, false).Pop();
+  const int node = top.state;
+  const double h = top.f;
+  h_stamp_[size_t(node)] = 2;
+  const int i = node / 2, q = node % 2;
+  const int ix = i % w.size_x, iy = i / w.size_x;
+  // posture changes move the origin by the kneel offset along the heading; the set of
+  // offsets is symmetric, so the reversed edges are the same
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const int px = ix + kneel_steps_[k] * kSteps[k].dx, py = iy + kneel_steps_[k] * kSteps[k].dy;
+    if (!w.Contains(px, py)) continue;
+    const int other = 2 * w.Index(px, py) + (q ^ 1);
+    if (h_open_[size_t(other)]) Relax(other, h + p_.posture_change_cost);
+  }
+  // a step up or down crosses cells between its ends up to h_floor beyond its two levels
+  const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
+  const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
+  for (int k = 0; k < kNumHeadings; ++k) {
+    if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
+    const int j = i + kSteps[k].dy * w.size_x + kSteps[k].dx;
+    const int other = 2 * j + q;
+    if (!h_open_[size_t(other)] || h_stamp_[size_t(other)] == 2) continue;
+    double dh = 0.0;
+    if (std::isfinite(height[i]) && std::isfinite(height[j])) {
+      dh = std::abs(double(height[j]) - double(height[i]));
     }
-    // a step up or down crosses cells between its ends up to h_floor beyond its two levels
-    const double max_dh = q == 0 ? p_.h_stairs + 2 * p_.h_floor : p_.h_floor;
-    const bool interior = ix >= 2 && iy >= 2 && ix < w.size_x - 2 && iy < w.size_y - 2;
-    for (int k = 0; k < kNumHeadings; ++k) {
-      if (!interior && !w.Contains(ix + kSteps[k].dx, iy + kSteps[k].dy)) continue;
-      const int j = i + step_offset[k];
-      const int other = 2 * j + q;
-      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
-      double dh = 0.0;
-      if (std::isfinite(height[i]) && std::isfinite(height[j])) {
-        dh = std::abs(double(height[j]) - double(height[i]));
-      }
-      if (dh > max_dh) continue;
-      double factor = crawl_factor;
-      if (q == 0) factor = (stairs[size_t(i)] || stairs[size_t(j)] || dh > p_.h_floor)
-                               ? stairs_factor : upright_factor;
-      relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
-                                                          cell_cost_[size_t(j)])));
+    if (dh > max_dh) continue;
+    double factor = crawl_factor;
+    if (q == 0) {
+      const bool stairs = fog_.type[size_t(i)] == CellType::kStairs ||
+                          fog_.type[size_t(j)] == CellType::kStairs || dh > p_.h_floor;
+      factor = stairs ? stairs_factor : upright_factor;
     }
-    if (q == 1) continue;
-    for (const auto& [e, length] : aside) {
-      const int jx = ix + e.dx, jy = iy + e.dy;
-      if (!w.Contains(jx, jy)) continue;
-      const int j = w.Index(jx, jy);
-      const int other = 2 * j;
-      if (!open[size_t(other)] || stamp[size_t(other)] == 2) continue;
-      if (std::isfinite(height[i]) && std::isfinite(height[j]) &&
-          std::abs(double(height[j]) - double(height[i])) > max_dh) {
-        continue;
-      }
-      relax(other, h + length * stairs_factor);
+    Relax(other, h + step_length_[k] * (factor + 0.5 * (cell_cost_[size_t(i)] +
+                                                        cell_cost_[size_t(j)])));
+  }
+  if (q == 1) return;
+  for (const auto& [e, length] : h_aside_) {
+    const int jx = ix + e.dx, jy = iy + e.dy;
+    if (!w.Contains(jx, jy)) continue;
+    const int j = w.Index(jx, jy);
+    const int other = 2 * j;
+    if (!h_open_[size_t(other)] || h_stamp_[size_t(other)] == 2) continue;
+    if (std::isfinite(height[i]) && std::isfinite(height[j]) &&
+        std::abs(double(height[j]) - double(height[i])) > max_dh) {
+      continue;
     }
+    Relax(other, h + length * stairs_factor);
   }
 }
 
@@ -990,6 +1033,17 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   }
   const std::vector<CellStep>& cells = footprint_[q][heading];
   Spread stance(centre_h);
+  if (q == 0 && inside) {
+    // standing with all of the footprint in the window: the checks below, by cell index
+    const int* index = footprint_index_[heading].data();
+    const uint8_t* level = level_cell_[heading].data();
+    for (size_t j = 0; j < cells.size(); ++j) {
+      const size_t i = size_t(cell + index[j]);
+      if (!OnLevel(i, centre_h, level[j] ? p_.h_floor : p_.h_stairs)) return false;
+      if (level[j] && !stance.Add(fog_.height[i], p_.h_floor)) return false;
+    }
+    return true;
+  }
   for (size_t j = 0; j < cells.size(); ++j) {
     const int nx = ix + cells[j].dx, ny = iy + cells[j].dy;
     if (!w.Contains(nx, ny)) {
@@ -1012,11 +1066,11 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
 
 uint32_t Lattice::StateFlags(int s) {
   uint32_t& v = memory_->valid_stamp[size_t(s)];
-  if ((v >> 4) != memory_->generation) {
+  if ((v >> 4) != valid_generation_) {
     const int cell = CellOfState(s), heading = HeadingOfState(s), q = int(PostureOfState(s));
     const bool fits = FootprintFits(cell, heading, q);
     const int touch = fits && q == 0 ? BodyTouches(cell, heading) : kNoTouch;
-    v = (memory_->generation << 4) | (fits ? 1u : 2u) | (uint32_t(touch) << 2);
+    v = (valid_generation_ << 4) | (fits ? 1u : 2u) | (uint32_t(touch) << 2);
   }
   return v & 15u;
 }

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "navigation/internal/open_list.h"
 #include "navigation/planner.h"
 #include "perception/mapping.h"
 #include "perception/types.h"
@@ -52,9 +54,10 @@ void SquaredDistanceTransform(const std::vector<uint8_t>& feature, int size_x, i
                               std::vector<double>* out);
 
 // Per-state scratch arrays reused from query to query so that a search neither allocates nor
-// clears them: an entry counts only if its stamp carries the current generation.
+// clears them: an entry counts only if its stamp carries the generation of its query (a
+// lattice's for the validity cache, a search's for the search state).
 struct SearchMemory {
-  uint32_t generation = 0;
+  uint32_t generation = 0;  // the latest query's
   // generation << 4 | 1 (valid) or 2 (invalid) | touch << 2 (valid and standing: how the body
   // meets the map, Lattice::kNoTouch, kEdgeTouch or kTouch)
   std::vector<uint32_t> valid_stamp;
@@ -63,8 +66,8 @@ struct SearchMemory {
   std::vector<int32_t> parent;  // a state, or -1 - seed index for seeds
   std::vector<Move> move;
   std::vector<int32_t> heap_position;  // index in the open list while a state is in it
-  // Starts a query over num_states states: new generation, arrays grown as needed.
-  void Begin(int num_states);
+  // Starts a query over num_states states: returns its new generation, arrays grown as needed.
+  uint32_t Begin(int num_states);
 };
 
 // Where a search may end (Lattice::TerminalCost).
@@ -81,7 +84,57 @@ enum class End : uint8_t {
   kBeyond,
 };
 
-class Lattice {
+// A step up or down from an origin at heading k: the cell offset of its end, its length and
+// the part of it across the heading (PlannerParams::max_step_sideways), the cells the standing
+// footprint sweeps and the origin cells along its line (the end included).
+struct Climb {
+  CellStep to;
+  double length = 0, across = 0;  // metres
+  std::vector<CellStep> swept, line;
+};
+
+// The lattice's shapes, which depend only on the robot's sizes in PlannerParams and the cell
+// size, not on the map: footprints, the body's and the sweeps' cell offsets, the climbs. Each
+// thread builds them once per robot and cell size (Lattice copies them); the members carry
+// Lattice's names, whose private base this is.
+struct LatticeShapes {
+  // Builds the shapes for `p`'s sizes on cells of `resolution` metres; aborts on sizes that
+  // make no footprint.
+  void Build(const PlannerParams& p, double resolution);
+
+  double step_length_[kNumHeadings] = {};  // metres
+  double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
+  double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
+  int kneel_steps_[kNumHeadings] = {};     // lattice steps a posture change moves along heading k
+  std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
+  // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
+  std::vector<uint8_t> level_cell_[kNumHeadings];
+  // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
+  std::vector<CellStep> body_extra_[kNumHeadings];
+  // [k][j]: whether body_extra_[k][j] (turn_body_[k][j]) lies before or behind the legs, within
+  // the stance's width grown by margin, rather than beside them, where only the arms reach
+  std::vector<uint8_t> body_extra_legs_[kNumHeadings], turn_body_legs_[kNumHeadings];
+  // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
+  // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
+  std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
+  double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
+  double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
+  // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
+  int body_reach_cells_ = 0;
+  std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
+  // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
+  // +/-, by heading k + 4, 3: forward), relative to the new origin, that the footprint before
+  // did not cover
+  std::vector<CellStep> blind_lead_[2][kNumHeadings][4];
+  double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
+  double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
+  int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
+  // [k]: the climbs of heading k, shortest first: every cell offset ahead within
+  // max_step_length whose part across the heading is at most max_step_sideways
+  std::vector<Climb> climbs_[kNumHeadings];
+};
+
+class Lattice : private LatticeShapes {
  public:
   // how a standing body meets the map around it (BodyMeets), in increasing order
   static constexpr int kNoTouch = 0, kEdgeTouch = 1, kTouch = 2;
@@ -93,8 +146,10 @@ class Lattice {
   // Aborts if the FOG's arrays do not match its window.
   Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
           SearchMemory* memory = nullptr, End end = End::kGoal, bool heuristic = true);
+  // Makes the lattice end searches as `end` says instead (terminal costs and heuristic anew),
+  // keeping what it knows of the map and of which states are valid.
+  void SetEnd(End end);
   SearchMemory& memory() { return *memory_; }
-  uint32_t generation() const { return memory_->generation; }
 
   int NumStates() const { return num_cells_ * 2 * kNumHeadings; }
   int StateIndex(int ix, int iy, int heading, Posture posture) const {
@@ -121,7 +176,12 @@ class Lattice {
   bool HasEnd() const { return has_end_; }
   // Consistent lower bound on the cost from state s to the end of a path (+infinity when the
   // relaxed problem already shows that none exists).
-  double Heuristic(int s) const { return heuristic_[size_t(s / kNumHeadings)]; }
+  // Settles the heuristic's Dijkstra as far as state s needs.
+  double Heuristic(int s) {
+    const size_t node = size_t(s / kNumHeadings);
+    while (!h_heap_.empty() && h_stamp_[node] != 2) SettleNext();
+    return heuristic_[node];
+  }
 
   bool GoalInWindow() const { return goal_in_window_; }
   // Whether some valid state lies in the goal region (only meaningful with the goal in window).
@@ -176,14 +236,6 @@ class Lattice {
   // of a tunnel cell. The crawl zone also spans floor of unseen headroom, where a ceiling seen
   // in part may go on, and in a room with nothing above the eyes that is all of its floor.
   bool MayGetDown(int cell) const;
-  // A step up or down from an origin at heading k: the cell offset of its end, its length and
-  // the part of it across the heading (PlannerParams::max_step_sideways), the cells the
-  // standing footprint sweeps and the origin cells along its line (the end included).
-  struct Climb {
-    CellStep to;
-    double length = 0, across = 0;  // metres
-    std::vector<CellStep> swept, line;
-  };
   // Appends the step up or down forward from the valid standing state s, if there is one: the
   // shortest climb of its heading that ends in a valid standing state on a floor more than
   // h_floor and at most h_stairs higher or lower.
@@ -223,6 +275,9 @@ class Lattice {
   // End::kBeyond: from the goal region's terminal costs to those of the window's edge
   void ComputeBeyondTerminalCosts();
   void ComputeHeuristic();
+  // The heuristic's Dijkstra: lowers a node's tentative value; settles the next node.
+  void Relax(int node, double h);
+  void SettleNext();
   // Floor height change from one cell to another (0 if either has no floor height).
   double HeightStep(int from_cell, int to_cell) const;
   // Central-difference floor height gradient at a cell (metres per cell), over the neighbours
@@ -253,46 +308,26 @@ class Lattice {
   // (border cells block a standing robot only off its own level)
   std::vector<double> blocked_d2_[2];
   std::vector<double> maybe_blocked_d2_[2];
-  int kneel_steps_[kNumHeadings];  // lattice steps a posture change moves along each heading
   std::vector<double> tunnel_d2_;  // squared distance to the nearest tunnel cell, cells^2
   std::vector<double> unknown_d2_;  // squared distance to the nearest UnseenUnwalked cell
   // squared distance to the nearest tunnel cell or floor cell of unseen headroom, cells^2
   std::vector<double> zone_d2_;
   double zone_d2_max_ = 0;  // crawl_zone_radius squared, cells^2 (plus kEps)
-  std::vector<CellStep> footprint_[2][kNumHeadings];  // cell offsets under each footprint
-  // [k][j]: whether footprint_[0][k][j] lies in the standing footprint grown by level_margin
-  std::vector<uint8_t> level_cell_[kNumHeadings];
-  // standing: offsets under the body rectangle (PlannerParams::body_*) outside footprint_[0]
-  std::vector<CellStep> body_extra_[kNumHeadings];
-  // [k][j]: whether body_extra_[k][j] (turn_body_[k][j]) lies before or behind the legs, within
-  // the stance's width grown by margin, rather than beside them, where only the arms reach
-  std::vector<uint8_t> body_extra_legs_[kNumHeadings], turn_body_legs_[kNumHeadings];
-  // [k]: offsets the soles' stance grown by level_margin, and the body's shape (legs and arms),
-  // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
-  std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
-  double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
-  double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
-  // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
-  int body_reach_cells_ = 0;
-  std::vector<CellStep> head_disc_;  // offsets within head_reach + margin of the origin
-  // [q][k][b]: offsets under the footprint after blind move b (0: backward, 1 and 2: across
-  // +/-, by heading k + 4, 3: forward), relative to the new origin, that the footprint before
-  // did not cover
-  std::vector<CellStep> blind_lead_[2][kNumHeadings][4];
-  double inner_radius_cells_[2] = {0, 0};  // inscribed radius of each footprint, cells
-  double outer_radius_cells_[2] = {0, 0};  // circumscribed radius, cells
-  int outer_reach_cells_[2] = {0, 0};      // largest |offset| component of each footprint
-  // [k]: the climbs of heading k, shortest first: every cell offset ahead within
-  // max_step_length whose part across the heading is at most max_step_sideways
-  std::vector<Climb> climbs_[kNumHeadings];
+  // [k]: footprint_[0][k] as offsets of the cell index in this map's window
+  std::vector<int> footprint_index_[kNumHeadings];
   std::vector<double> cell_cost_;          // per cell: clearance + unknown cost per metre
   std::vector<double> terminal_;           // per cell: TerminalCost
   std::vector<double> heuristic_;          // per cell and posture (cell * 2 + posture)
+  // the heuristic's Dijkstra, per node (cell * 2 + posture): open in the relaxed graph, stamp
+  // (1 queued, 2 settled: heuristic_ is final), place in h_heap_; the climbs across a heading
+  std::vector<uint8_t> h_open_, h_stamp_;
+  std::vector<int32_t> h_position_;
+  std::vector<OpenEntry> h_heap_;
+  std::vector<std::pair<CellStep, double>> h_aside_;  // offset, length in metres
   SearchMemory own_memory_;
   SearchMemory* memory_ = nullptr;
-  double step_length_[kNumHeadings] = {};  // metres
-  double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
-  double cos_stairs_error_ = 1.0;          // cos(max_stairs_heading_error)
+  uint32_t valid_generation_ = 0;  // the generation of this lattice's valid_stamp entries
+  bool heuristic_on_ = true;       // the constructor's `heuristic`
 };
 
 }  // namespace fognav::navigation::internal

@@ -20,9 +20,10 @@ struct OpenEntry {
 // from search to search.
 class OpenList {
  public:
-  OpenList(std::vector<OpenEntry>* heap, std::vector<int32_t>* position)
+  // Starts empty, or with `clear` false, with the entries already in `heap`.
+  OpenList(std::vector<OpenEntry>* heap, std::vector<int32_t>* position, bool clear = true)
       : heap_(*heap), position_(*position) {
-    heap_.clear();
+    if (clear) heap_.clear();
   }
   bool empty() const { return heap_.empty(); }
   // Inserts e, or if its state is already `queued`, lowers that state's key to e's.

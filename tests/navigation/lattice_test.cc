@@ -5,6 +5,7 @@
 #include <limits>
 #include <queue>
 #include <random>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -129,6 +130,123 @@ TEST(Lattice, AStarCostEqualsBruteForceDijkstraFromUnderATable) {
   ASSERT_EQ(r.status, PlanStatus::kOk);
   EXPECT_NEAR(r.cost, expected, 1e-9 * expected);
   EXPECT_EQ(r.path.back().posture, Posture::kUpright);  // it crawled out and got up
+}
+
+// A path as runs of (move, heading) pairs: each pose after the first as its move's letter (w
+// walk, s sidestep, t turn, u/d stairs up/down, c crawl) and its lattice heading in hex, a run
+// of the same pair followed by its length ("w07" is seven walks along heading 0).
+std::string MovesOf(const PlanResult& r) {
+  static const char kLetter[kNumMoves + 1] = "nwstudc";
+  std::vector<std::string> poses;
+  for (size_t i = 1; i < r.path.size(); ++i) {
+    const PathPose& q = r.path[i];
+    const char heading = "0123456789abcdef"[NearestHeading(q.pose_G.yaw)];
+    poses.push_back(std::string(1, kLetter[int(q.move)]) + heading);
+  }
+  std::string out;
+  for (size_t i = 0; i < poses.size();) {
+    size_t j = i;
+    while (j < poses.size() && poses[j] == poses[i]) ++j;
+    out += (out.empty() ? "" : " ") + poses[i] + (j - i > 1 ? std::to_string(j - i) : "");
+    i = j;
+  }
+  return out;
+}
+
+// The plans the search found before it was made faster (commit be9dea0): the same moves at the
+// same cost, which is the brute-force Dijkstra's. A faster search that breaks ties differently
+// or prunes a state it should not fails here.
+TEST(Lattice, FasterSearchKeepsThePlans) {
+  struct Case {
+    const char* name;
+    Fog fog;
+    Pose2 start;
+    Eigen::Vector2d goal;
+    double clearance_radius;
+    double cost;
+    const char* moves;
+  };
+  const Course course = PaperCourse();
+  const Fog table = CorridorWithTable();
+  const std::vector<Case> cases = {
+      {"course", course.fog, course.start_G, course.goal_G, 0.6, 10.148540144593401,
+       "w07 t1 w1 t2 t3 s33 t2 s2 w2 t1 w1 t0 w02 u0 w04 u0 w05 d0 w04 d0 w02 t1 t2 t3 t4 s417 "
+       "w43 c4 t3 t2 t1 t0 c021"},
+      {"table", table, {0.3, 0.9, 0.0}, {2.9, 1.2}, 0.6, 7.4029926386806872,
+       "t1 w17 t0 w02 c032 w017"},
+      {"table straight", table, {0.3, 1.2, 0.0}, {2.9, 1.2}, 0.6, 6.9786646604855251,
+       "w016 c032 w017"},
+      {"cluttered 2", ClutteredFog(2), {0.14, 0.58, 0.3}, {1.30, 0.62}, 0.3, 5.8225430496183748,
+       "t0 tf te td wd4 te we3 tf wf t0 w0 u0 w0 s022 d0 s02 w0 t1 w1 t0 w04 tf wf2 te we2 td wd "
+       "tc wc5"},
+      {"cluttered 4", ClutteredFog(4), {0.14, 0.58, 0.3}, {1.30, 0.62}, 0.3, 3.8739182915732773,
+       "t0 w0 s08 t1 w15 t0 w0 u0 w0 d0 w09 tf wf te we2 td wd tc wc6"},
+  };
+  for (const Case& c : cases) {
+    PlannerParams p;
+    p.clearance_radius = c.clearance_radius;
+    const PlanResult r = Plan(c.fog, c.start, c.goal, p);
+    ASSERT_EQ(r.status, PlanStatus::kOk) << c.name;
+    EXPECT_NEAR(r.cost, c.cost, 1e-9 * c.cost) << c.name;
+    EXPECT_NEAR(r.cost, BruteForceCost(c.fog, c.start, c.goal, p, Posture::kUpright),
+                1e-9 * c.cost)
+        << c.name;
+    EXPECT_EQ(MovesOf(r), c.moves) << c.name;
+  }
+}
+
+// Plan's fallback for a goal beyond the window that no way out leads toward searches the
+// lattice of its first search again with the other end (Lattice::SetEnd): the plan is the one a
+// fresh lattice gives (PlanToward), state for state. The way out is a wall's L-shaped slot too
+// narrow to turn the corner in, which only the full first search shows to be closed.
+TEST(Lattice, FallbackOnTheSameLatticeGivesTheFreshPlan) {
+  const PlannerParams p;
+  Fog fog = FlatFog(100, 100, 0.04);
+  FillBox(&fog, 2.0, 0.0, 2.4, 4.0, CellType::kObstacle, 0.3f);
+  FillBox(&fog, 1.96, 1.0, 2.26, 1.16, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.0, 2.26, 1.8, CellType::kFloor, 0.0f);
+  FillBox(&fog, 2.1, 1.64, 2.44, 1.8, CellType::kFloor, 0.0f);
+  const Pose2 start{0.5, 2.02, 0.0};
+  const Eigen::Vector2d goal(5.0, 2.02);  // beyond the wall and the window
+  const PlanResult fallback = Plan(fog, start, goal, p);
+  const PlanResult fresh = PlanToward(fog, start, goal, p);
+  ASSERT_EQ(fresh.status, PlanStatus::kOk);
+  ASSERT_EQ(fallback.status, PlanStatus::kOk);
+  EXPECT_FALSE(fallback.reaches_goal);
+  EXPECT_LT(fallback.path.back().pose_G.x, 2.0);  // short of the wall
+  EXPECT_EQ(fallback.cost, fresh.cost);
+  EXPECT_EQ(fallback.expanded, fresh.expanded);
+  EXPECT_EQ(MovesOf(fallback), MovesOf(fresh));
+  EXPECT_GT(fallback.path.size(), 5u);
+}
+
+// The heuristic's Dijkstra settles only as far as the search asks: its values do not depend on
+// the order in which the states are asked for (the goal in the window, beyond it, toward it).
+TEST(Lattice, HeuristicIsTheSameInWhateverOrderItIsAsked) {
+  const PlannerParams p;
+  std::mt19937 rng(7);
+  for (uint32_t seed = 1; seed <= 3; ++seed) {
+    const Fog fog = ClutteredFog(seed);
+    for (const auto& [goal, end] : {std::pair(Eigen::Vector2d(1.30, 0.62), End::kGoal),
+                                    std::pair(Eigen::Vector2d(3.0, 0.9), End::kGoal),
+                                    std::pair(Eigen::Vector2d(3.0, 0.9), End::kToward)}) {
+      Lattice ascending(fog, goal, p, nullptr, end), descending(fog, goal, p, nullptr, end);
+      Lattice sampled(fog, goal, p, nullptr, end);
+      const int n = ascending.NumStates();
+      std::vector<double> down(size_t(n), 0.0);
+      for (int s = n - 1; s >= 0; --s) down[size_t(s)] = descending.Heuristic(s);
+      std::uniform_int_distribution<int> any(0, n - 1);
+      for (int i = 0; i < 50; ++i) sampled.Heuristic(any(rng));
+      int finite = 0;
+      for (int s = 0; s < n; ++s) {
+        const double h = ascending.Heuristic(s);
+        ASSERT_EQ(h, down[size_t(s)]) << "state " << s;
+        ASSERT_EQ(h, sampled.Heuristic(s)) << "state " << s;
+        finite += h < kInf;
+      }
+      EXPECT_GT(finite, n / 4) << "seed " << seed;
+    }
+  }
 }
 
 TEST(Lattice, HeuristicIsConsistent) {

@@ -129,6 +129,12 @@ TEST_P(Suite, MeetsItsExpectations) {
                           "wall_time_s", "timing_ms", "fog_accuracy"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
+  // the slow plans beside the median plan: median <= 95th percentile <= maximum
+  const nlohmann::json& timing = report["timing_ms"];
+  ASSERT_TRUE(timing.contains("planning_p95") && timing.contains("planning_max")) << timing;
+  EXPECT_LE(timing["planning"].get<double>(), timing["planning_p95"].get<double>());
+  EXPECT_LE(timing["planning_p95"].get<double>(), timing["planning_max"].get<double>());
+  EXPECT_GT(timing["planning_max"].get<double>(), 0.0);
 }
 
 // The suite: every scenario file in `dir` (*.yaml) with a top-level `expect`, by name, sorted.
