@@ -9,8 +9,9 @@
 #include <utility>
 
 #include <benchmark/benchmark.h>
-#ifdef FOGNAV_HAVE_OPENCV_RGBD
+#include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
+#ifdef FOGNAV_HAVE_OPENCV_RGBD
 #include <opencv2/rgbd.hpp>
 #endif
 #ifdef FOGNAV_HAVE_PCL
@@ -156,6 +157,34 @@ BENCHMARK(BM_Stereo)
     ->Name("Stereo/176x144/refined_check")
     ->Args({176, 144, 30})
     ->Unit(benchmark::kMillisecond);
+
+// The stereo peer: OpenCV's StereoSGBM, one plain pass over the same pair with our search range,
+// block and penalties (no padding, left-right check or refinement); the timing includes the
+// conversion to OpenCV's images, as Stereo's does.
+void BM_StereoPeerSgbm(benchmark::State& state) {
+  const auto K = internal::SceneIntrinsics(176, 144);
+  RgbImage left, right;
+  internal::RenderStereoPair(BenchScene(), K, BenchCamera(), &left, &right);
+  const StereoParams p;
+  const int area = p.block_size * p.block_size * 3;
+  auto sgbm = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size, 8 * area,
+                                     32 * area);
+  auto to_mat = [](const RgbImage& image) {
+    cv::Mat mat(image.height, image.width, CV_8UC3);
+    for (int v = 0; v < image.height; ++v)
+      for (int u = 0; u < image.width; ++u) {
+        const Rgb& c = image.at(u, v);
+        mat.at<cv::Vec3b>(v, u) = cv::Vec3b(c.b, c.g, c.r);
+      }
+    return mat;
+  };
+  cv::Mat disp16;
+  for (auto _ : state) {
+    sgbm->compute(to_mat(left), to_mat(right), disp16);
+    benchmark::DoNotOptimize(disp16.data);
+  }
+}
+BENCHMARK(BM_StereoPeerSgbm)->Name("StereoPeer/SGBM_1pass")->Unit(benchmark::kMillisecond);
 
 #ifdef FOGNAV_HAVE_OPENCV_RGBD
 // OpenCV's plane finder (cv::rgbd::RgbdPlane with RgbdNormals) on the same point images; the
