@@ -184,7 +184,12 @@ RenderedView Renderer::Render(const mjModel* m, const mjData* d, const PinholeCa
   mjr_readPixels(impl_->rgb_flipped.data(), need_depth && k == 1 ? impl_->depth_flipped.data() : nullptr,
                  sample_viewport, &impl_->context);
   const int samples = k * k;
-  for (int v = 0; v < h; ++v) {
+  for (int v = 0; k == 1 && v < h; ++v) {
+    // one sample per pixel: the rows as they are, bottom to top
+    std::copy_n(&impl_->rgb_flipped[size_t(h - 1 - v) * w * 3], size_t(w) * 3,
+                &view.rgb[size_t(v) * w * 3]);
+  }
+  for (int v = 0; k > 1 && v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       for (int c = 0; c < 3; ++c) {
         int sum = 0;
