@@ -1,4 +1,4 @@
-// Cycle/course: one perception-action cycle of the course mission (scenarios/stairs_and_table.yaml)
+// Cycle/course: one perception-action cycle of the course mission (stairs_and_table.yaml)
 // from the robot's pose at cycle 14 of its run (1.26, -0.06, heading along the course, before
 // the stairs), with the maps of the look-around sweep there: render the pair, stereo,
 // segmentation, mapping, the FOG and a plan to the goal.
@@ -35,8 +35,8 @@ void BM_CycleCourse(benchmark::State& state) {
   // the recorded state: the maps of the look-around sweep at that pose, head looking ahead
   perception::MapState maps;
   auto perceive = [&]() {
-    const StereoView view = RenderStereo(
-        &renderer, world, sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft), scenario.sensor);
+    const Eigen::Isometry3d X_WL = sim::HeadCameraPoseInWorld(humanoid, d, sim::Eye::kLeft);
+    const StereoView view = RenderStereo(&renderer, world, X_WL, scenario.sensor);
     return PerceiveView(run_params.perception, scenario.sensor.depth, view, humanoid, robot_G, 0.0,
                         sim::HeadCameraPose(humanoid, d, sim::Eye::kLeft),
                         sim::RobotBodyBoxes(humanoid, m, d), &maps);
