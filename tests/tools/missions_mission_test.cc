@@ -65,7 +65,8 @@ void ExpectCyclesMatchReport(const std::string& dir, const nlohmann::json& repor
   ASSERT_EQ(int(rows.size()), cycles + 1);
   const std::vector<std::string> decisions = {
       "follow", "look_around", "look_on_arrival", "circling_look", "fresh_look", "toward_goal",
-      "get_up", "explore", "explore_ends", "inspect", "peek", "explore_edge", "give_up"};
+      "get_up", "explore", "explore_ends", "inspect", "peek", "explore_edge", "back_off",
+      "give_up"};
   int previous_step = 0, previous_explorations = 0;
   for (int c = 1; c <= cycles; ++c) {
     const auto& row = rows[size_t(c)];
@@ -77,13 +78,14 @@ void ExpectCyclesMatchReport(const std::string& dir, const nlohmann::json& repor
     // a mission explores at most four times; starting to is counted in its row
     const int explorations = std::stoi(row[12]);
     EXPECT_LE(explorations, 4);
-    const bool starts = row[9] == "inspect" || row[9] == "peek" || row[9] == "explore_edge";
+    const bool starts = row[9] == "inspect" || row[9] == "peek" || row[9] == "explore_edge" ||
+                        row[9] == "back_off";
     EXPECT_EQ(explorations, previous_explorations + (starts ? 1 : 0)) << "cycle " << c;
     previous_explorations = explorations;
     // exploring and looking from afar name where to; the rest name no target
     const bool targeted = row[9] == "explore" || row[9] == "inspect" || row[9] == "peek" ||
                           row[9] == "explore_edge" || row[9] == "explore_ends" ||
-                          row[9] == "look_on_arrival";
+                          row[9] == "look_on_arrival" || row[9] == "back_off";
     EXPECT_EQ(!row[10].empty(), targeted) << "cycle " << c << " " << row[9];
     const bool last = c == cycles;
     EXPECT_EQ(row[9] == "give_up", last && report["failure"] == "no_path") << "cycle " << c;
