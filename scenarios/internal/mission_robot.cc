@@ -144,10 +144,15 @@ void MarkFloorUnderFeet(const nav::PlannerParams& p, const Pose2& robot, double 
   });
 }
 
+// a log with its header line, on the disk
 std::ofstream OpenLog(const std::string& path, const char* header) {
   std::ofstream log(path);
   if (!log) throw OutputError(path + ": cannot write");
-  log << header;
+  errno = 0;
+  if (!(log << header).flush()) {
+    throw OutputError(path + ": cannot write: " +
+                      (errno != 0 ? std::strerror(errno) : "the stream failed"));
+  }
   return log;
 }
 
@@ -184,17 +189,16 @@ MissionRobot::MissionRobot(const Scenario& scenario, const RunParams& params,
       limits_(params.mission),
       edge_params_(params.step_edge),
       planner_(*planner),
+      trajectory_(OpenLog(options.out_dir + "/trajectory.csv",
+                          "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n")),
+      cycles_(OpenLog(options.out_dir + "/cycles.csv",
+                      "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,"
+                      "decision,target_x,target_y,explorations,thrashes\n")),
       controller_params_(ControllerParamsFor(scenario)),
       world_(MakeWorldSpec(scenario)),
       controller_(world_.model(), controller_params_),
       renderer_(world_.model()),
       humanoid_(controller_.humanoid()) {
-  trajectory_ = OpenLog(options.out_dir + "/trajectory.csv",
-                        "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n");
-  cycles_ = OpenLog(options.out_dir + "/cycles.csv",
-                    "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,"
-                    "decision,target_x,target_y,explorations,thrashes\n");
-  FlushLogs();
   if (!options.video_path.empty()) {
     video_ = std::make_unique<MissionVideo>(options.video_path, options.video_fps);
   }
@@ -210,7 +214,11 @@ MissionRobot::MissionRobot(const Scenario& scenario, const RunParams& params,
   step_covariance_ = Eigen::Vector3d(xy * xy, xy * xy, yaw * yaw).asDiagonal();
   for (const auto& name : ActionNames()) actions_[name] = 0;
   last_true_ = TruePose();
-  ForCellsUnder(believed(), 0.5 * planner_.depth, 0.5 * planner_.shoulder_width,
+  NoteWalked(believed());
+}
+
+void MissionRobot::NoteWalked(const Pose2& at) {
+  ForCellsUnder(at, 0.5 * planner_.depth, 0.5 * planner_.shoulder_width,
                 perception_.map.grid.resolution, [&](int gx, int gy) { walked_.insert({gx, gy}); });
 }
 
@@ -335,11 +343,7 @@ void MissionRobot::OnTick() {
   std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%s\n", controller_.steps(),
                 controller_.ticks(), t.x, t.y, t.yaw, o.x, o.y, o.yaw, current_move_.c_str());
   trajectory_ << row;
-  if (controller_.mode() == sim::Mode::kStanding) {
-    ForCellsUnder(o, 0.5 * planner_.depth, 0.5 * planner_.shoulder_width,
-                  perception_.map.grid.resolution,
-                  [&](int gx, int gy) { walked_.insert({gx, gy}); });
-  }
+  if (controller_.mode() == sim::Mode::kStanding) NoteWalked(o);
 }
 
 void MissionRobot::RunController() {

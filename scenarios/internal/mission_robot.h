@@ -102,6 +102,7 @@ class MissionRobot {
 
  private:
   void OnTick();
+  void NoteWalked(const perception::Pose2& at);  // Fog::walked: the standing footprint at `at`
   void RunController();
   void Perceive();
   void Look(const sim::HeadAngles& view);
@@ -124,6 +125,8 @@ class MissionRobot {
   const ExecutionLimits& limits_;
   const perception::StepEdgeParams& edge_params_;
   const navigation::PlannerParams& planner_;
+  // the logs come first: a folder that cannot take them fails before the simulator starts
+  std::ofstream trajectory_, cycles_;
   sim::ControllerParams controller_params_;
   sim::World world_;
   sim::Controller controller_;
@@ -145,7 +148,6 @@ class MissionRobot {
   std::string current_move_ = "look";
   int last_step_logged_ = 0;
   int cycle_ = 0;
-  std::ofstream trajectory_, cycles_;
   std::unique_ptr<MissionVideo> video_;
   int video_every_ = 1;
   perception::RgbImage video_plan_picture_;
