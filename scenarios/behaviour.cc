@@ -183,15 +183,6 @@ nav::PathSegment FirstRun(const nav::PlanResult& plan, const ExecutionLimits& li
 
 }  // namespace
 
-const char* ModeName(Mode mode) {
-  switch (mode) {
-    case Mode::kFollow: return "follow";
-    case Mode::kExplore: return "explore";
-    case Mode::kGoLook: return "go_look";
-  }
-  return "?";
-}
-
 nav::PlanResult PlanToGoal(const perception::Fog& fog, const Pose2& start, const MissionGoal& goal,
                            const nav::PlannerParams& planner, nav::Posture posture,
                            nav::PlannerParams* used) {

@@ -32,7 +32,6 @@ enum class Mode {
   kExplore,  // going on past where the map window's way to the goal seemed to end
   kGoLook,   // going to a pose to look from (an inspection or a peek)
 };
-const char* ModeName(Mode mode);
 
 // What the robot does this cycle.
 enum class Action {
