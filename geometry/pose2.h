@@ -3,6 +3,8 @@
 #ifndef FOGNAV_GEOMETRY_POSE2_H_
 #define FOGNAV_GEOMETRY_POSE2_H_
 
+#include <cmath>
+
 namespace fognav {
 
 // A planar pose: position (x, y) in metres and heading yaw in radians, in the frame named where
@@ -10,6 +12,9 @@ namespace fognav {
 struct Pose2 {
   double x = 0, y = 0, yaw = 0;
 };
+
+// An angle in radians wrapped to [-pi, pi].
+inline double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
 
 }  // namespace fognav
 

@@ -12,11 +12,15 @@ namespace nav = navigation;
 using perception::CellType;
 using perception::Pose2;
 
-double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 bool Moves(const nav::PlanResult& p) { return p.status == nav::PlanStatus::kOk && p.path.size() >= 2; }
 
 Eigen::Vector2d At(const Pose2& p) { return {p.x, p.y}; }
+
+// Whether two poses are the same lattice pose: within half a cell and 0.05 rad.
+bool SamePose(const Pose2& a, const Pose2& b, double resolution) {
+  return std::hypot(a.x - b.x, a.y - b.y) < 0.5 * resolution &&
+         std::abs(WrapAngle(a.yaw - b.yaw)) < 0.05;
+}
 
 // Where to look from at obstacle evidence seen only from farther than `range`
 // (ExecutionLimits::inspect_range), in obstacle and tunnel cells and on the rims of raised
@@ -291,10 +295,7 @@ Decision Behaviour::Decide(const perception::Fog& fog, const perception::MapStat
 // getting min_approach nearer the goal than it was at the first time; notes the arrival.
 bool Behaviour::NoteArrival(const Pose2& believed, double resolution) {
   MissionState& s = state_;
-  auto same_pose = [&](const Pose2& a, const Pose2& b) {
-    return std::hypot(a.x - b.x, a.y - b.y) < 0.5 * resolution &&
-           std::abs(WrapAngle(a.yaw - b.yaw)) < 0.05;
-  };
+  auto same_pose = [&](const Pose2& a, const Pose2& b) { return SamePose(a, b, resolution); };
   const bool moved_here = s.arrivals.empty() || !same_pose(s.arrivals.back().first, believed);
   int times_here = 0;
   double nearest_then = 0;  // at the first time
@@ -320,11 +321,7 @@ void Behaviour::KeepLastPlan(const perception::Fog& fog, const Pose2& believed,
     return;
   }
   const nav::PathPose& at = s.last_plan.path[s.last_plan_at];
-  if (at.posture != posture || std::hypot(at.pose_G.x - believed.x, at.pose_G.y - believed.y) >=
-                                   0.5 * fog.window.resolution ||
-      std::abs(WrapAngle(at.pose_G.yaw - believed.yaw)) >= 0.05) {
-    return;
-  }
+  if (at.posture != posture || !SamePose(at.pose_G, believed, fog.window.resolution)) return;
   nav::PlanResult rest = nav::ContinuePlan(fog, s.last_plan, s.last_plan_at, believed, goal_.at, used);
   if (Moves(rest) && rest.cost <= plan->cost + std::max(limits_.keep_plan_margin,
                                                        limits_.keep_plan_share * plan->cost)) {

@@ -153,15 +153,15 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
                           {"depth", c.depth}});
   }
   nlohmann::json timing_ms = nlohmann::json::object();
-  for (const char* stage : {"render", "stereo", "segmentation", "mapping", "planning", "control"}) {
+  auto samples = [&](const char* stage) {
     const auto it = robot.timing().find(stage);
-    timing_ms[stage] = perception::Median(it == robot.timing().end() ? std::vector<double>{}
-                                                                     : it->second);
+    return it == robot.timing().end() ? std::vector<double>{} : it->second;
+  };
+  for (const char* stage : {"render", "stereo", "segmentation", "mapping", "planning", "control"}) {
+    timing_ms[stage] = perception::Median(samples(stage));
   }
   // the slow plans: the planning stage's 95th percentile (nearest rank) and maximum
-  const auto planning = robot.timing().find("planning");
-  std::vector<double> plan_ms =
-      planning == robot.timing().end() ? std::vector<double>{} : planning->second;
+  std::vector<double> plan_ms = samples("planning");
   std::sort(plan_ms.begin(), plan_ms.end());
   timing_ms["planning_p95"] =
       plan_ms.empty() ? 0.0 : plan_ms[size_t(std::ceil(0.95 * double(plan_ms.size()))) - 1];

@@ -23,8 +23,6 @@ double Ms(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-double WrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
-
 // displacement (dx, dy in the frame of `from`, dyaw) from one planar pose to another
 Eigen::Vector3d Relative(const Pose2& from, const Pose2& to) {
   double c = std::cos(from.yaw), s = std::sin(from.yaw);
