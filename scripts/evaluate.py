@@ -3,7 +3,7 @@
 
 Usage: scripts/evaluate.py OUT_DIR [--split eval|dev] [--fognav PATH] [--jobs N]
                            [--compare OLD_DIR] [--families course,rooms] [--count N]
-                           [--seeds FILE]
+                           [--seeds FILE] [--noise-seeds K]
 
 The worlds of each family come from its generator and the seeds of the split in
 scripts/seeds.json; they are written to OUT_DIR/worlds/FAMILY/. --count N takes N worlds in all,
@@ -13,6 +13,9 @@ OUT_DIR/NAME/report.json exists and parses is not run again, so a rerun continue
 interrupted one stopped. A line per finished world goes to stderr; the summary (overall and
 per family) to stdout, OUT_DIR/summary.json and OUT_DIR/results.tsv (one row per world).
 With --compare OLD_DIR it also lists the worlds whose outcome differs from OLD_DIR/results.tsv.
+With --noise-seeds K, a world with odometry noise also runs under the noise seeds 1 ... K-1
+(`fognav run --seed I`, as OUT_DIR/NAME.nI): the outcome of such a world flips with the seed
+alone, so a change is judged over its runs; the figures then count runs, not worlds.
 Exit code 0 when every world ran (whatever its outcome), 1 when fognav could not run a world
 (bad scenario or simulator error: outcome "error"), 2 on bad arguments or a bad seeds file.
 Only the standard library is used.
@@ -22,6 +25,7 @@ import concurrent.futures
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -110,6 +114,27 @@ def generate(out_dir, sets, count):
     return worlds
 
 
+def noisy(scenario):
+    """Whether a scenario file sets odometry noise above zero (`odometry_noise: {xy: ...}`)."""
+    with open(scenario) as f:
+        match = re.search(r"^odometry_noise:\s*\{([^}]*)\}", f.read(), re.MULTILINE)
+    if not match:
+        return False
+    values = re.findall(r":\s*([-+0-9.eE]+)", match.group(1))
+    return any(float(v) > 0 for v in values)
+
+
+def with_noise_seeds(worlds, k):
+    """The runs [(family, name, scenario, noise seed or None)]: every world once with its own
+    seed, and a world with odometry noise also under the noise seeds 1 ... k-1."""
+    runs = []
+    for family, name, scenario in worlds:
+        runs.append((family, name, scenario, None))
+        if k > 1 and noisy(scenario):
+            runs += [(family, f"{name}.n{i}", scenario, i) for i in range(1, k)]
+    return runs
+
+
 def read_report(run_dir):
     """The run's report.json as a dict, or None when it is missing or does not parse."""
     try:
@@ -155,14 +180,17 @@ def error_row(family, name, detail):
             "wall_time_s": 0.0, "failure_detail": detail}
 
 
-def run_world(fognav, out_dir, family, name, scenario):
-    """Runs one world unless its report exists; returns (row, whether it was run now)."""
+def run_world(fognav, out_dir, family, name, scenario, noise_seed=None):
+    """Runs one world (under odometry noise seed noise_seed, if given) unless its report
+    exists; returns (row, whether it was run now)."""
     run_dir = os.path.join(out_dir, name)
     report = read_report(run_dir)
     if report is not None:
         return row_from_report(family, name, report), False
-    done = subprocess.run([fognav, "run", scenario, "--out", run_dir, "--quiet"],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    command = [fognav, "run", scenario, "--out", run_dir, "--quiet"]
+    if noise_seed is not None:
+        command += ["--seed", str(noise_seed)]
+    done = subprocess.run(command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     report = read_report(run_dir)
     if done.returncode in (0, 1) and report is not None:
         return row_from_report(family, name, report), True
@@ -262,27 +290,27 @@ def classes(d):
     return ", ".join(f"{k} {v}" for k, v in d.items()) or "none"
 
 
-def format_figures(label, s):
+def format_figures(label, s, unit="worlds"):
     lo, hi = s["success_ci95"]
-    lines = [f"{label}: {s['worlds']} worlds, {s['with_way']} with a way on the ground truth"
+    lines = [f"{label}: {s['worlds']} {unit}, {s['with_way']} with a way on the ground truth"
              + (f", {s['errors']} could not run" if s["errors"] else ""),
              f"  success     {s['success']}/{s['with_way']} = {pct(s['success_rate'])} "
              f"(95 % interval {pct(lo)} - {pct(hi)}), reached the goal {s['reached_goal']}",
-             f"  collisions  {s['worlds_with_collisions']} worlds",
+             f"  collisions  {s['worlds_with_collisions']} {unit}",
              f"  mean SPL    {num(s['mean_spl'])}",
              f"  failures    {classes(s['failures'])}",
-             f"  no way      {s['without_way']} worlds, ended: {classes(s['without_way_ends'])}",
+             f"  no way      {s['without_way']} {unit}, ended: {classes(s['without_way_ends'])}",
              f"  FOG         mean traversability {num(s['mean_fog_traversability'])}, "
              f"mean unsafe cells {num(s['mean_fog_unsafe_cells'], 1)}"]
     return lines
 
 
-def format_summary(summary, changes=None):
-    lines = format_figures("all", summary["all"])
+def format_summary(summary, changes=None, unit="worlds"):
+    lines = format_figures("all", summary["all"], unit)
     for family, s in summary["families"].items():
-        lines += format_figures(family, s)
+        lines += format_figures(family, s, unit)
     if changes is not None:
-        lines.append(f"changed outcome: {len(changes)} worlds"
+        lines.append(f"changed outcome: {len(changes)} {unit}"
                      f" ({sum(n == 'success' for _, _, n in changes)} now succeed,"
                      f" {sum(o == 'success' for _, o, _ in changes)} no longer)")
         lines += [f"  {name}: {old} -> {new}" for name, old, new in changes]
@@ -310,9 +338,13 @@ def parse_args(argv):
     parser.add_argument("--families", help="comma-separated, default all in the seeds file")
     parser.add_argument("--count", type=int, help="worlds in all, default every seed set's")
     parser.add_argument("--seeds", default=os.path.join(ROOT, "scripts", "seeds.json"))
+    parser.add_argument("--noise-seeds", type=int, default=1, metavar="K",
+                        help="run worlds with odometry noise under K noise seeds (default 1)")
     args = parser.parse_args(argv)
     if args.jobs < 1:
         parser.error("--jobs must be at least 1")
+    if args.noise_seeds < 1:
+        parser.error("--noise-seeds must be at least 1")
     if args.count is not None and args.count < 1:
         parser.error("--count must be at least 1")
     return args
@@ -331,7 +363,7 @@ def main(argv=None):
         print(f"evaluate: {e}", file=sys.stderr)
         return 2
     os.makedirs(args.out_dir, exist_ok=True)
-    worlds = generate(args.out_dir, sets, args.count)
+    worlds = with_noise_seeds(generate(args.out_dir, sets, args.count), args.noise_seeds)
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=args.jobs) as pool:
         futures = [pool.submit(run_world, args.fognav, args.out_dir, *w) for w in worlds]
@@ -346,13 +378,15 @@ def main(argv=None):
     summary = summarize(rows)
     changes = compare(rows, old_rows) if old_rows is not None else None
     write_tsv(os.path.join(args.out_dir, "results.tsv"), rows)
-    out = dict(summary, split=args.split, seeds=os.path.relpath(args.seeds, ROOT))
+    out = dict(summary, split=args.split, seeds=os.path.relpath(args.seeds, ROOT),
+               noise_seeds=args.noise_seeds)
     if changes is not None:
         out["changed"] = [{"name": n, "old": o, "new": w} for n, o, w in changes]
     with open(os.path.join(args.out_dir, "summary.json"), "w") as f:
         json.dump(json_safe(out), f, indent=2, sort_keys=True)
         f.write("\n")
-    sys.stdout.write(format_summary(summary, changes))
+    sys.stdout.write(format_summary(summary, changes,
+                                    "runs" if args.noise_seeds > 1 else "worlds"))
     return 1 if summary["all"]["errors"] else 0
 
 

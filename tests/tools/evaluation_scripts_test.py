@@ -255,6 +255,40 @@ class Evaluate(unittest.TestCase):
         self.assertEqual(summary["families"]["rooms"]["success"], 2)
         self.assertEqual(summary["changed"], [])
 
+    def test_noise_seeds_run_noisy_worlds_again_under_other_seeds_only(self):
+        scenarios = {"clean": "seed: 3\nrobot: {start: [0, 0, 0]}\n",
+                     "zero": "seed: 3\nodometry_noise: {xy: 0.0, yaw_deg: 0}\n",
+                     "noisy": "seed: 3\nodometry_noise: {xy: 0.0, yaw_deg: 0.5}\n"}
+        worlds = []
+        for name, text in scenarios.items():
+            path = os.path.join(self.tmp, name + ".yaml")
+            with open(path, "w") as f:
+                f.write(text)
+            worlds.append(("rooms", name, path))
+        self.assertEqual([evaluate.noisy(w[2]) for w in worlds], [False, False, True])
+        runs = evaluate.with_noise_seeds(worlds, 3)
+        self.assertEqual([(r[1], r[3]) for r in runs],
+                         [("clean", None), ("zero", None), ("noisy", None), ("noisy.n1", 1),
+                          ("noisy.n2", 2)])
+        self.assertEqual(evaluate.with_noise_seeds(worlds, 1), [w + (None,) for w in worlds])
+        # the seed reaches the program, and each run has a directory of its own
+        fake = os.path.join(self.tmp, "fake_fognav")
+        with open(fake, "w") as f:
+            f.write(f"#!{sys.executable}\nimport json, os, sys\n"
+                    "out = sys.argv[sys.argv.index('--out') + 1]\n"
+                    "os.makedirs(out, exist_ok=True)\n"
+                    "seed = sys.argv[sys.argv.index('--seed') + 1] if '--seed' in sys.argv else ''\n"
+                    f"r = {report(True)!r}\n"
+                    "r['failure_detail'] = 'seed ' + seed\n"
+                    "json.dump(r, open(out + '/report.json', 'w'))\n")
+        os.chmod(fake, 0o755)
+        out = os.path.join(self.tmp, "seeded")
+        rows = [evaluate.run_world(fake, out, *r)[0] for r in runs]
+        self.assertEqual([r["failure_detail"] for r in rows],
+                         ["seed ", "seed ", "seed ", "seed 1", "seed 2"])
+        self.assertIn("all: 5 runs, 5 with a way",
+                      evaluate.format_summary(evaluate.summarize(rows), unit="runs"))
+
 
 if __name__ == "__main__":
     unittest.main()
