@@ -257,6 +257,19 @@ struct SegmentationScore {
 SegmentationScore ScoreSegmentation(const LabelImage& labels, const LabelImage& truth_surface_ids,
                                     const DepthImage& truth_depth_m, const ScoreParams& p = {});
 
+// The ground truth's surfaces are the world's planar surfaces, not the faces of its geoms: faces
+// of different geoms that touch and lie in one plane (a table leg flush with the top's edge, two
+// blocks side by side) are one surface that no range data can split. Joins every two surface
+// ids that are 4-neighbours somewhere in the image and whose exact points (`exact_points`, from
+// the renderer's depth, the same size) fit one plane: the RMS residual of their joint fit is at
+// most `tolerance` metres and their own normals differ by at most max_angle radians. Only
+// surfaces with a normal of their own take part: at least min_points points, spread by at
+// least min_spread metres (standard deviation) in two directions. A joined surface takes the
+// lowest of its ids.
+LabelImage JoinCoplanarSurfaces(const LabelImage& truth_surface_ids, const PointImage& exact_points,
+                                double tolerance = 0.001, double max_angle = 0.02,
+                                int min_points = 20, double min_spread = 0.005);
+
 // Range data against the renderer's depth, in disparity pixels (d = fx B / z), as stereo
 // benchmarks score it; over pixels whose true depth is finite and at most max_depth_m.
 struct StereoScore {

@@ -85,7 +85,10 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   } else {
     result.points = perception::DepthPointImage(view.depth, view.intrinsics);
   }
-  perception::LabelImage truth = WorldSurfaces(view.surfaces, humanoid);
+  perception::LabelImage truth = perception::JoinCoplanarSurfaces(
+      WorldSurfaces(view.surfaces, humanoid),
+      mode == DepthMode::kStereo ? perception::DepthPointImage(view.depth, view.intrinsics)
+                                 : result.points);
   perception::DepthImage truth_depth = view.depth;
   if (params.subsample) {
     result.points = perception::Subsample2x(result.points);

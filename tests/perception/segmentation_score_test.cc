@@ -1,5 +1,7 @@
 // Segmentation scores: Table 2 accuracy, coverage and Hoover et al.'s counts on label images
 // drawn in code.
+#include <functional>
+
 #include <gtest/gtest.h>
 
 #include "perception/segmentation.h"
@@ -109,6 +111,61 @@ TEST(ScoreSegmentation, CoplanarSurfacesApartNeedASegmentEach) {
   EXPECT_NEAR(m.coverage, (200.0 + 200) / 600, 1e-12);
   EXPECT_DOUBLE_EQ(a.accuracy, 1.0);
   EXPECT_DOUBLE_EQ(a.coverage, 1.0);
+}
+
+// Exact points of a 60 x 10 view, column by column: `depth(u)` gives the point's z, and x
+// follows the column (1 cm per column), y the row.
+PointImage ExactPoints(const std::function<double(int)>& depth) {
+  PointImage points(60, 10);
+  for (int v = 0; v < 10; ++v) {
+    for (int u = 0; u < 60; ++u) points.at(u, v) = Eigen::Vector3f(0.01f * u, 0.01f * v, float(depth(u)));
+  }
+  return points;
+}
+
+TEST(JoinCoplanarSurfaces, TouchingFacesInOnePlaneBecomeOneSurface) {
+  // a table leg flush with the top's edge: ids 7 and 3 side by side in the plane z = 1, id 11
+  // beyond them, 1 cm behind that plane
+  const Truth t;
+  const LabelImage joined =
+      JoinCoplanarSurfaces(t.ids, ExactPoints([](int u) { return u < 40 ? 1.0 : 1.01; }));
+  EXPECT_EQ(joined.at(5, 5), 3);  // the lower id
+  EXPECT_EQ(joined.at(25, 5), 3);
+  EXPECT_EQ(joined.at(45, 5), 11);  // parallel, 1 cm apart: two surfaces
+
+  // a segment over both faces is now one correct detection, not an under-segmentation
+  LabelImage labels(60, 10, -1);
+  Fill(&labels, 0, 40, 0);
+  Fill(&labels, 40, 60, 1);
+  const SegmentationScore before = ScoreSegmentation(labels, t.ids, t.depth);
+  const SegmentationScore after = ScoreSegmentation(labels, joined, t.depth);
+  EXPECT_LT(before.accuracy, 0.7);
+  EXPECT_DOUBLE_EQ(after.accuracy, 1.0);
+  EXPECT_DOUBLE_EQ(after.coverage, 1.0);
+  EXPECT_EQ(after.correct, 2);
+  EXPECT_EQ(after.under, 0);
+}
+
+TEST(JoinCoplanarSurfaces, FacesAtAnAngleOrApartStayApart) {
+  const Truth t;
+  // an edge: ids 7 and 3 meet at u = 20 at 45 degrees (z grows with x beyond it)
+  const LabelImage corner = JoinCoplanarSurfaces(
+      t.ids, ExactPoints([](int u) { return u < 20 ? 1.0 : 1.0 + 0.01 * (u - 20); }));
+  EXPECT_EQ(corner.at(5, 5), 7);
+  EXPECT_EQ(corner.at(25, 5), 3);
+  // a surface of one pixel on the edge fits both planes, and joins neither
+  Truth bridged;
+  bridged.ids.at(20, 5) = 5;
+  const LabelImage bridge = JoinCoplanarSurfaces(
+      bridged.ids, ExactPoints([](int u) { return u < 20 ? 1.0 : 1.0 + 0.01 * (u - 20); }));
+  EXPECT_EQ(bridge.at(5, 5), 7);
+  EXPECT_EQ(bridge.at(25, 5), 3);
+  EXPECT_EQ(bridge.at(20, 5), 5);
+  // two faces in one plane with a nearer surface between them in the image: not touching
+  const LabelImage apart =
+      JoinCoplanarSurfaces(t.ids, ExactPoints([](int u) { return u >= 20 && u < 40 ? 0.8 : 1.0; }));
+  EXPECT_EQ(apart.at(5, 5), 7);
+  EXPECT_EQ(apart.at(45, 5), 11);
 }
 
 TEST(ScoreSegmentation, CountsOnlyPixelsWithinTheScoredRange) {
