@@ -6,12 +6,14 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 
+#include "perception/internal/plane_moments.h"
 #include "perception/segmentation.h"
 
 namespace fognav::perception {
@@ -38,42 +40,30 @@ void Ratios(SegmentationScore* s) {
   s->coverage = s->surface_px > 0 ? double(s->overlap_px) / double(s->surface_px) : 0.0;
 }
 
-// Sums of points for a least-squares plane.
-struct Moments {
-  int n = 0;
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Moments operator+(const Moments& o) const { return {n + o.n, b + o.b, A + o.A}; }
-  // eigenvalues (ascending) and vectors of the points' scatter about their mean
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> Scatter() const {
-    const Eigen::Vector3d mean = b / n;
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(A / n - mean * mean.transpose());
-  }
-};
+// Eigenvalues (ascending) and vectors of the points' scatter about their mean.
+Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> Scatter(const internal::Moments& m) {
+  const Eigen::Vector3d mean = m.b / m.n;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m.A / m.n - mean * mean.transpose());
+}
 
 }  // namespace
 
 LabelImage JoinCoplanarSurfaces(const LabelImage& truth, const PointImage& exact_points,
                                 double tolerance, double max_angle, int min_points,
                                 double min_spread) {
-  std::map<int32_t, Moments> moments;
+  std::map<int32_t, internal::Moments> moments;
   for (int v = 0; v < truth.height; ++v) {
     for (int u = 0; u < truth.width; ++u) {
       const int32_t id = truth.at(u, v);
       const Eigen::Vector3f& p = exact_points.at(u, v);
-      if (id < 0 || !p.allFinite()) continue;
-      const Eigen::Vector3d q = p.cast<double>();
-      Moments& m = moments[id];
-      ++m.n;
-      m.b += q;
-      m.A += q * q.transpose();
+      if (id >= 0 && p.allFinite()) moments[id].Add(p.cast<double>());
     }
   }
   // the pairs of ids that touch
-  std::map<std::pair<int32_t, int32_t>, bool> pairs;
+  std::set<std::pair<int32_t, int32_t>> pairs;
   auto touch = [&](int32_t a, int32_t b) {
     if (a >= 0 && b >= 0 && a != b && moments.count(a) && moments.count(b)) {
-      pairs[{std::min(a, b), std::max(a, b)}] = true;
+      pairs.emplace(std::min(a, b), std::max(a, b));
     }
   };
   for (int v = 0; v < truth.height; ++v) {
@@ -90,16 +80,18 @@ LabelImage JoinCoplanarSurfaces(const LabelImage& truth, const PointImage& exact
   };
   // a surface has a normal of its own if it has min_points and spreads in two directions (a
   // pixel or a strip fits any plane through it and would join surfaces at an angle)
-  auto has_normal = [&](const Moments& m) {
-    return m.n >= min_points && m.Scatter().eigenvalues()(1) >= min_spread * min_spread;
+  auto has_normal = [&](const internal::Moments& m) {
+    return m.n >= min_points && Scatter(m).eigenvalues()(1) >= min_spread * min_spread;
   };
-  for (const auto& [pair, unused] : pairs) {
-    const Moments& a = moments[pair.first];
-    const Moments& b = moments[pair.second];
+  for (const auto& pair : pairs) {
+    const internal::Moments& a = moments[pair.first];
+    const internal::Moments& b = moments[pair.second];
     if (!has_normal(a) || !has_normal(b)) continue;
-    if ((a + b).Scatter().eigenvalues()(0) > tolerance * tolerance) continue;
-    const Eigen::Vector3d na = a.Scatter().eigenvectors().col(0);
-    const Eigen::Vector3d nb = b.Scatter().eigenvectors().col(0);
+    internal::Moments joint = a;
+    joint.Add(b);
+    if (Scatter(joint).eigenvalues()(0) > tolerance * tolerance) continue;
+    const Eigen::Vector3d na = Scatter(a).eigenvectors().col(0);
+    const Eigen::Vector3d nb = Scatter(b).eigenvectors().col(0);
     if (std::acos(std::min(1.0, std::abs(na.dot(nb)))) > max_angle) continue;
     const int32_t ra = find(pair.first), rb = find(pair.second);
     parent[std::max(ra, rb)] = std::min(ra, rb);
