@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -72,28 +71,30 @@ LabelImage JoinCoplanarSurfaces(const LabelImage& truth, const PointImage& exact
       if (v + 1 < truth.height) touch(truth.at(u, v), truth.at(u, v + 1));
     }
   }
+  // each surface's normal, if it has one of its own: min_points spread in two directions (a
+  // pixel or a strip fits any plane through it and would join surfaces at an angle)
+  std::map<int32_t, Eigen::Vector3d> normal;
+  for (const auto& [id, m] : moments) {
+    if (m.n < min_points) continue;
+    const auto scatter = Scatter(m);
+    if (scatter.eigenvalues()(1) >= min_spread * min_spread) {
+      normal[id] = scatter.eigenvectors().col(0);
+    }
+  }
   // union-find over the coplanar pairs; a root is its component's lowest id
   std::map<int32_t, int32_t> parent;
   for (const auto& [id, m] : moments) parent[id] = id;
-  std::function<int32_t(int32_t)> find = [&](int32_t id) {
-    return parent[id] == id ? id : parent[id] = find(parent[id]);
+  auto find = [&](int32_t id) {
+    while (parent[id] != id) id = parent[id] = parent[parent[id]];
+    return id;
   };
-  // a surface has a normal of its own if it has min_points and spreads in two directions (a
-  // pixel or a strip fits any plane through it and would join surfaces at an angle)
-  auto has_normal = [&](const internal::Moments& m) {
-    return m.n >= min_points && Scatter(m).eigenvalues()(1) >= min_spread * min_spread;
-  };
-  for (const auto& pair : pairs) {
-    const internal::Moments& a = moments[pair.first];
-    const internal::Moments& b = moments[pair.second];
-    if (!has_normal(a) || !has_normal(b)) continue;
-    internal::Moments joint = a;
-    joint.Add(b);
+  for (const auto& [a, b] : pairs) {
+    if (!normal.count(a) || !normal.count(b)) continue;
+    internal::Moments joint = moments[a];
+    joint.Add(moments[b]);
     if (Scatter(joint).eigenvalues()(0) > tolerance * tolerance) continue;
-    const Eigen::Vector3d na = Scatter(a).eigenvectors().col(0);
-    const Eigen::Vector3d nb = Scatter(b).eigenvectors().col(0);
-    if (std::acos(std::min(1.0, std::abs(na.dot(nb)))) > max_angle) continue;
-    const int32_t ra = find(pair.first), rb = find(pair.second);
+    if (std::acos(std::min(1.0, std::abs(normal[a].dot(normal[b])))) > max_angle) continue;
+    const int32_t ra = find(a), rb = find(b);
     parent[std::max(ra, rb)] = std::min(ra, rb);
   }
   LabelImage joined = truth;
