@@ -292,12 +292,13 @@ void ReadParams(const Reader& r, const YAML::Node& params, std::map<std::string,
       const YAML::Node value = item.second;
       const ParamInfo& info = *FindParam(name);
       // a quoted scalar is a string, whatever it spells
-      if (!value.IsScalar() || value.Tag() == "!") {
+      if (!value.IsScalar() || (value.Tag() == "!" && info.type != ParamType::kChoice)) {
         const std::string got =
             value.IsScalar() ? "the string \"" + value.Scalar() + "\"" : Reader::Kind(value);
-        const char* expected = info.type == ParamType::kBool  ? "expected true or false"
-                               : info.type == ParamType::kInt ? "expected an integer"
-                                                              : "expected a number";
+        const char* expected = info.type == ParamType::kBool     ? "expected true or false"
+                               : info.type == ParamType::kInt    ? "expected an integer"
+                               : info.type == ParamType::kChoice ? "expected a name"
+                                                                 : "expected a number";
         r.Fail(value, "params." + name, std::string(expected) + ", got " + got);
       }
       double parsed = 0;
@@ -457,10 +458,17 @@ Scenario ParseRoot(const Reader& r, const YAML::Node& root, const std::string& s
   if (const YAML::Node sensor = root["sensor"]) ReadSensor(r, sensor, &s);
 
   if (const YAML::Node noise = root["odometry_noise"]) {
-    r.Map(noise, "odometry_noise", {"xy", "yaw_deg"});
+    r.Map(noise, "odometry_noise", {"xy", "yaw_deg", "stride_scale", "yaw_bias_deg"});
     if (noise["xy"]) s.odometry_noise_xy = r.NonNegative(noise["xy"], "odometry_noise.xy");
     if (noise["yaw_deg"]) {
       s.odometry_noise_yaw = r.NonNegative(noise["yaw_deg"], "odometry_noise.yaw_deg") * kDegToRad;
+    }
+    if (noise["stride_scale"]) {
+      s.odometry_stride_scale = r.NonNegative(noise["stride_scale"], "odometry_noise.stride_scale");
+    }
+    if (noise["yaw_bias_deg"]) {
+      s.odometry_yaw_bias =
+          r.NonNegative(noise["yaw_bias_deg"], "odometry_noise.yaw_bias_deg") * kDegToRad;
     }
   }
 

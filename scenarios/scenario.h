@@ -102,6 +102,10 @@ struct Scenario {
   SensorSettings sensor;
   double odometry_noise_xy = 0;   // std-dev per step, metres
   double odometry_noise_yaw = 0;  // std-dev per step, rad
+  // systematic, drawn once per mission: std-dev of the stride scale error (a fraction) and of
+  // the yaw added every step (rad)
+  double odometry_stride_scale = 0;
+  double odometry_yaw_bias = 0;
   int max_cycles = 600;
   int max_steps = 2000;
   Expectations expect;

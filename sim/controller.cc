@@ -100,6 +100,12 @@ void Controller::Reset(const Pose2& start, double surface_z, const Pose2& believ
   collisions_.clear();
   touching_.clear();
   rng_.seed(params_.seed);
+  // the systematic part has a generator of its own: the per-step stream stays as it was
+  std::mt19937 systematic(params_.seed ^ 0x5eedu);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  stride_scale_error_ = params_.odometry_stride_scale * unit(systematic);
+  yaw_bias_error_ = params_.odometry_yaw_bias * unit(systematic);
+  settled_ = true;
   steps_ = 0;
   tick_ = 0;
   believed_ = believed;
@@ -139,7 +145,9 @@ FootPlacement Controller::NoisyFoot(const GroundFrame& frame, int side) {
 
 void Controller::PushStride(double dx, double dy, double dyaw, double dz) {
   const GroundFrame from = FeetFrame(plan_.feet);
-  GroundFrame to = from.Then(dx, dy, dyaw);
+  // executed: the commanded stride with the systematic error (two footsteps of yaw bias)
+  const double scale = 1 + stride_scale_error_;
+  GroundFrame to = from.Then(scale * dx, scale * dy, dyaw + 2 * yaw_bias_error_);
   to.z = plan_.feet[0].p.z() + dz;
   // the foot on the side of the motion leads
   int lead = 0;
@@ -160,6 +168,7 @@ void Controller::PushStride(double dx, double dy, double dyaw, double dz) {
     seg.lift_z = std::max(seg.feet_from[side].p.z(), seg.feet_to[side].p.z()) +
                  (sideways ? params_.side_clearance : params_.swing_clearance);
     if (k == 1) seg.odometry = {dx, dy, dyaw};
+    seg.settles = k == 1;
     seg.steps = 1;
     plan_.feet = seg.feet_to;
     queue_.push_back(seg);
@@ -251,7 +260,9 @@ void Controller::Crawl(double dx, double dyaw) {
     seg.mode_after = Mode::kCrawling;
     seg.ticks = std::max(1, int(std::lround(params_.crawl_cycle_time * params_.control_rate_hz)));
     seg.crawl_from = plan_.crawl;
-    seg.crawl_to = plan_.crawl.Then(delta.x, delta.y, delta.yaw);
+    const double scale = 1 + stride_scale_error_;
+    seg.crawl_to =
+        plan_.crawl.Then(scale * delta.x, scale * delta.y, delta.yaw + 4 * yaw_bias_error_);
     // the executed cycle drifts like four footsteps would
     const double ex = unit(rng_), ey = unit(rng_), eyaw = unit(rng_);
     seg.crawl_to.x += 2 * params_.odometry_noise_xy * ex;
@@ -259,6 +270,7 @@ void Controller::Crawl(double dx, double dyaw) {
     seg.crawl_to.yaw = internal::WrapAngle(seg.crawl_to.yaw + 2 * params_.odometry_noise_yaw * eyaw);
     seg.odometry = delta;
     seg.steps = 4;
+    seg.settles = true;
     plan_.crawl = seg.crawl_to;
     queue_.push_back(seg);
   }
@@ -499,6 +511,7 @@ void Controller::Tick(const mjModel* m, mjData* d) {
     if (segment_tick_ >= seg.ticks) {
       mode_ = seg.mode_after;
       steps_ += seg.steps;
+      if (seg.steps > 0) settled_ = seg.settles;
       believed_ = Compose(believed_, seg.odometry);
       queue_.pop_front();
       segment_tick_ = 0;

@@ -68,7 +68,11 @@ struct ControllerParams {
   StepLimits limits;
   double odometry_noise_xy = 0;   // m, std-dev per footstep along each axis
   double odometry_noise_yaw = 0;  // rad, std-dev per footstep
-  unsigned seed = 0;              // of the odometry noise
+  // systematic odometry error, drawn once per Reset from the seed: every stride's length is
+  // scaled by 1 + s with s ~ N(0, stride_scale), every footstep turns by b ~ N(0, yaw_bias)
+  double odometry_stride_scale = 0;  // std-dev of s (0.03: strides about 3 % off)
+  double odometry_yaw_bias = 0;      // rad, std-dev of b
+  unsigned seed = 0;                 // of the odometry noise
   double collision_depth = 0.005;  // m, deeper robot-world contacts are collisions
   double support_depth = 0.02;     // m, deeper support contacts (soles etc.) count too
 };
@@ -159,6 +163,13 @@ class Controller {
   Pose2 TruePose(const mjData* d) const;
   // Footsteps executed so far (each foot placement counts one; crawl cycles count 4).
   int steps() const { return steps_; }
+  // Whether the last footstep completed a stride or crawl cycle: the feet (or knees and hands)
+  // are where the believed pose says, up to the odometry's error. Mid-stride the believed pose
+  // still holds the stride's start.
+  bool settled() const { return settled_; }
+  // The systematic errors drawn at Reset: the stride scale s and the yaw per footstep b (rad).
+  double stride_scale_error() const { return stride_scale_error_; }
+  double yaw_bias_error() const { return yaw_bias_error_; }
   int ticks() const { return tick_; }
   double dt() const { return 1.0 / params_.control_rate_hz; }
 
@@ -191,6 +202,7 @@ class Controller {
     // on completion: the commanded displacement (odometry) and the footsteps it counts
     Pose2 odometry;
     int steps = 0;
+    bool settles = false;  // completes a stride or crawl cycle
   };
   // State of the robot at the end of the queue, for planning the next command.
   struct Plan {
@@ -215,6 +227,8 @@ class Controller {
   Humanoid humanoid_;
   ControllerParams params_;
   std::mt19937 rng_;
+  double stride_scale_error_ = 0, yaw_bias_error_ = 0;
+  bool settled_ = true;
   std::deque<Segment> queue_;
   int segment_tick_ = 0;  // ticks done in the front segment
   Plan plan_;
