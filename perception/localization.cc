@@ -170,4 +170,68 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
   return pose;
 }
 
+Pose2 FusePose(const Pose2& pose_G, const Pose2& measured_G, const Eigen::Matrix3d& R,
+               double gate, LocalizationState* state, bool* accepted) {
+  Eigen::MatrixXd& P = state->covariance;
+  const Eigen::Vector3d error(measured_G.x - pose_G.x, measured_G.y - pose_G.y,
+                              WrapAngle(measured_G.yaw - pose_G.yaw));
+  // H = [I 0]: S = P_pose + R, K = P[:, pose] S^-1
+  const Eigen::Matrix3d S = P.topLeftCorner<3, 3>() + R;
+  const Eigen::LDLT<Eigen::Matrix3d> S_ldlt(S);
+  const bool ok = S_ldlt.info() == Eigen::Success && S.determinant() > 0 &&
+                  error.dot(S_ldlt.solve(error)) <= gate * gate;
+  if (accepted != nullptr) *accepted = ok;
+  if (!ok) return pose_G;
+  const Eigen::MatrixXd PHt = P.leftCols<3>();
+  const Eigen::MatrixXd K = S_ldlt.solve(PHt.transpose()).transpose();
+  const Eigen::VectorXd delta = K * error;
+  Pose2 pose = pose_G;
+  pose.x += delta(0);
+  pose.y += delta(1);
+  pose.yaw = WrapAngle(pose.yaw + delta(2));
+  for (size_t i = 0; i < state->landmarks.size(); ++i) {
+    state->landmarks[i].angle =
+        WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
+    state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
+  }
+  P.noalias() -= K * PHt.transpose();
+  P = 0.5 * (P + P.transpose()).eval();
+  return pose;
+}
+
+LocalizationReport LocalizeView(const LocalizationParams& params,
+                                const VisualOdometryParams& visual, const LocalizationView& view,
+                                const Pose2& pose_G, LocalizationState* state) {
+  LocalizationReport report;
+  report.pose_G = pose_G;
+  if (params.mode == LocalizationMode::kOdometry || params.mode == LocalizationMode::kTruth) {
+    return report;
+  }
+  const bool use_visual = params.mode == LocalizationMode::kVisual && view.gray != nullptr &&
+                          view.depth != nullptr && !view.gray->empty();
+  // noise-free odometry is exact: nothing to correct, the keyframes are anchors
+  const bool uncertain = state->PoseCovariance().trace() > 0;
+  if (use_visual && uncertain) {
+    report.visual = RegisterView(visual, *view.gray, *view.depth, view.intrinsics, view.X_RC,
+                                 pose_G, view.floor_z, state->visual);
+    if (report.visual.tracked) {
+      report.pose_G = FusePose(pose_G, report.visual.robot_G, report.visual.covariance,
+                               visual.gate, state, &report.visual_fused);
+    }
+    ++state->visual.views;
+    if (report.visual_fused) ++state->visual.tracked;
+  }
+  if (view.planes_C != nullptr) {
+    report.pose_G = CorrectPose(params, *view.planes_C, view.image_pixels, view.X_RC,
+                                report.pose_G, state);
+  }
+  if (use_visual) {
+    const Eigen::Matrix3d P = state->PoseCovariance();
+    UpdateKeyframes(visual, *view.gray, *view.depth, view.intrinsics,
+                    Planar(report.pose_G, view.floor_z) * view.X_RC, P, P.trace() <= 0,
+                    &state->visual);
+  }
+  return report;
+}
+
 }  // namespace fognav::perception

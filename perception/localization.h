@@ -19,10 +19,20 @@
 
 #include "perception/segmentation.h"
 #include "perception/types.h"
+#include "perception/visual_odometry.h"
 
 namespace fognav::perception {
 
+// Where the robot's belief of its pose comes from.
+enum class LocalizationMode {
+  kOdometry,  // footstep odometry alone (the paper's robot)
+  kWalls,     // odometry corrected by the walls seen
+  kVisual,    // odometry fused with visual odometry and the walls
+  kTruth,     // the true pose (a ceiling for experiments)
+};
+
 struct LocalizationParams {
+  LocalizationMode mode = LocalizationMode::kVisual;
   // which planes are walls: on the suite's noise-free stereo views these limits keep 210 of
   // 637 vertical planes, all within 2.2 deg and 3 cm of their true face (the others include
   // planes off by up to 20 deg: merged corners, leg slivers, spurious matches)
@@ -54,6 +64,7 @@ struct WallLandmark {
 // added while the pose was uncertain carries that uncertainty (EKF SLAM).
 struct LocalizationState {
   std::vector<WallLandmark> landmarks;
+  VisualOdometryState visual;  // keyframes and counts of the visual odometry
   Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(3, 3);
   // the pose block of the covariance
   Eigen::Matrix3d PoseCovariance() const { return covariance.topLeftCorner<3, 3>(); }
@@ -75,6 +86,39 @@ void PredictPose(const Pose2& before, const Pose2& after,
 Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& planes_C,
                   int image_pixels, const Eigen::Isometry3d& X_RC, const Pose2& pose_G,
                   LocalizationState* state);
+
+// One view as localization sees it.
+struct LocalizationView {
+  const std::vector<Plane>* planes_C = nullptr;  // the view's planes, camera frame
+  int image_pixels = 0;                          // of the image they were segmented from
+  const GrayImage* gray = nullptr;               // left image (visual odometry)
+  const DepthImage* depth = nullptr;             // its depth, camera z, NaN where none
+  CameraIntrinsics intrinsics;                   // of gray and depth
+  Eigen::Isometry3d X_RC = Eigen::Isometry3d::Identity();  // camera in the robot frame
+  double floor_z = 0;                                      // the robot's floor height
+};
+
+// What localizing one view did.
+struct LocalizationReport {
+  Pose2 pose_G;                 // the corrected pose
+  VisualOdometryResult visual;  // the registration (mode kVisual)
+  bool visual_fused = false;    // the registration passed the gate and was fused
+};
+
+// Localizes one view taken at the odometry pose pose_G: in mode kVisual the view is registered
+// to the keyframes and the measurement fused (FusePose, gated), then in kWalls and kVisual the
+// walls correct the pose (CorrectPose); kVisual then keeps the view as a keyframe where none
+// overlaps it. kOdometry and kTruth return pose_G unchanged.
+LocalizationReport LocalizeView(const LocalizationParams& params,
+                                const VisualOdometryParams& visual, const LocalizationView& view,
+                                const Pose2& pose_G, LocalizationState* state);
+
+// Fuses a measurement `measured_G` of the pose (grid frame) with noise covariance R into the
+// filter whose pose is pose_G: returns the corrected pose and updates the covariance (pose and
+// landmarks). A measurement farther than `gate` (Mahalanobis, over the pose covariance plus R)
+// is rejected: pose_G is returned and *accepted (if given) set false.
+Pose2 FusePose(const Pose2& pose_G, const Pose2& measured_G, const Eigen::Matrix3d& R,
+               double gate, LocalizationState* state, bool* accepted = nullptr);
 
 }  // namespace fognav::perception
 

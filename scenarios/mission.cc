@@ -166,6 +166,34 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
   timing_ms["planning_p95"] =
       plan_ms.empty() ? 0.0 : plan_ms[size_t(std::ceil(0.95 * double(plan_ms.size()))) - 1];
   timing_ms["planning_max"] = plan_ms.empty() ? 0.0 : plan_ms.back();
+  // the believed pose against the truth at settled footsteps (docs/localization.md)
+  std::vector<double> position_errors, yaw_errors;
+  for (const auto& e : robot.settled_errors()) {
+    position_errors.push_back(e.position);
+    yaw_errors.push_back(e.yaw);
+  }
+  auto spread = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const auto rank = [&](double q) { return v.empty() ? 0.0 : v[size_t(std::ceil(q * double(v.size()))) - 1]; };
+    return nlohmann::json{{"median", perception::Median(v)}, {"p95", rank(0.95)},
+                          {"max", v.empty() ? 0.0 : v.back()}};
+  };
+  const auto& settled = robot.settled_errors();
+  const double drift = settled.empty() || settled.back().walked <= 0
+                           ? 0.0
+                           : settled.back().position / settled.back().walked;
+  const perception::VisualOdometryState& vo = robot.localization().visual;
+  const nlohmann::json localization = {
+      {"mode", FormatParamValue(*FindParam("localization.mode"),
+                                double(run_params.perception.localization.mode))},
+      {"position_error", spread(position_errors)},
+      {"yaw_error", spread(yaw_errors)},
+      {"settled_footsteps", settled.size()},
+      {"drift_per_m", drift},
+      {"visual_views", vo.views},
+      {"visual_tracked", vo.views == 0 ? 0.0 : double(vo.tracked) / double(vo.views)},
+      {"keyframes", vo.keyframes.size()}};
+  timing_ms["localization"] = perception::Median(samples("localization"));
   auto null_if_empty = [](const std::string& s) {
     return s.empty() ? nlohmann::json(nullptr) : nlohmann::json(s);
   };
@@ -194,6 +222,7 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
        {{"median", fog_score.height_error_median}, {"max", fog_score.height_error_max}}},
       {"final_pose", {{"true", {truth_pose.x, truth_pose.y, truth_pose.yaw}},
                       {"odometry", {believed.x, believed.y, believed.yaw}}}},
+      {"localization", localization},
       {"wall_time_s", Ms(end.wall_start) / 1000},
       {"timing_ms", timing_ms},
       {"params", ParamsJson(run_params)}};

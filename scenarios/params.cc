@@ -41,14 +41,15 @@ template <typename... Members>
 ParamInfo Row(std::string name, Range range, std::string meaning, Members... members) {
   using Field = std::remove_cv_t<
       std::remove_reference_t<decltype((std::declval<RunParams&>().*....*members))>>;
-  static_assert(
-      std::is_same_v<Field, double> || std::is_same_v<Field, int> || std::is_same_v<Field, bool>,
-      "parameters are double, int or bool");
+  static_assert(std::is_same_v<Field, double> || std::is_same_v<Field, int> ||
+                    std::is_same_v<Field, bool> || std::is_enum_v<Field>,
+                "parameters are double, int, bool or an enumeration");
   ParamInfo info;
   info.name = std::move(name);
   info.type = std::is_same_v<Field, double> ? ParamType::kDouble
               : std::is_same_v<Field, int>  ? ParamType::kInt
-                                            : ParamType::kBool;
+              : std::is_same_v<Field, bool> ? ParamType::kBool
+                                            : ParamType::kChoice;
   info.min = range.min;
   info.max = range.max;
   info.meaning = std::move(meaning);
@@ -160,6 +161,9 @@ void AddPerceptionParamsRows(std::vector<ParamInfo>* t) {
   t->push_back(Row("perception.rim_keep_height", kAnyMetres,
                   "column-rim points this high above the robot's floor are kept, metres", P,
                   &PerceptionParams::rim_keep_height));
+  t->push_back(Row("perception.view_every_steps", {0, 1000},
+                  "while walking, a view every this many footsteps; 0 = none", P,
+                  &PerceptionParams::view_every_steps));
 }
 
 // labelled points (perception::LabelParams)
@@ -331,6 +335,42 @@ void AddLocalizationParamsRows(std::vector<ParamInfo>* t) {
       &S::near_angle);
   add("near_offset", kMetres, "... and this near, metres", &S::near_offset);
   add("max_landmarks", {0, 100000}, "most landmarks kept", &S::max_landmarks);
+  ParamInfo mode = Row("localization.mode", {0, 3},
+                       "odometry (footsteps alone), walls, visual (odometry, visual odometry and "
+                       "walls fused) or truth",
+                       P, W, &S::mode);
+  mode.choices = {"odometry", "walls", "visual", "truth"};
+  t->push_back(mode);
+}
+
+// visual odometry against keyframes (perception::VisualOdometryParams)
+void AddVisualOdometryRows(std::vector<ParamInfo>* t) {
+  const auto P = &RunParams::perception;
+  using S = per::VisualOdometryParams;
+  const auto W = &PerceptionParams::visual_odometry;
+  auto add = [&](const char* key, Range r, const char* meaning, auto field) {
+    t->push_back(Row(std::string("visual_odometry.") + key, r, meaning, P, W, field));
+  };
+  add("min_depth", kMetres, "nearer points are not used, metres", &S::min_depth);
+  add("max_depth", kMetres, "farther points are not used, metres", &S::max_depth);
+  add("max_depth_diff", kMetres, "largest depth difference of a correspondence, metres",
+      &S::max_depth_diff);
+  add("iterations", {1, 1000}, "iterations per pyramid level", &S::iterations);
+  add("max_correction", kMetres, "largest correction of the seed used, metres",
+      &S::max_correction);
+  add("max_correction_angle", kAngle, "largest rotation of the seed used, rad",
+      &S::max_correction_angle);
+  add("agree_depth", kMetres, "a point agrees within this depth, metres", &S::agree_depth);
+  add("agree_depth_per_m", kShare, "... plus this per metre of depth", &S::agree_depth_per_m);
+  add("min_agreement", kShare, "fewest agreeing points, as a share", &S::min_agreement);
+  add("min_overlap", kShare, "least keyframe overlap to register against it", &S::min_overlap);
+  add("keyframe_overlap", kShare, "a new keyframe where no keyframe overlaps more",
+      &S::keyframe_overlap);
+  add("max_keyframes", {1, 10000}, "most keyframes kept", &S::max_keyframes);
+  add("sigma_xy", kMetres, "registration noise of the position, metres", &S::sigma_xy);
+  add("sigma_yaw", kAngle, "registration noise of the heading, rad", &S::sigma_yaw);
+  add("gate", kFactor, "Mahalanobis distance to the odometry beyond which it is rejected",
+      &S::gate);
 }
 
 // the planner (navigation::PlannerParams); goal_tolerance, kneel_offset, max_step_length and
@@ -501,6 +541,7 @@ std::vector<ParamInfo> MakeTable() {
   AddFogParamsRows(&t);
   AddVoidParamsRows(&t);
   AddLocalizationParamsRows(&t);
+  AddVisualOdometryRows(&t);
   AddPlannerParamsRows(&t);
   AddExecutionLimitsRows(&t);
   AddStepEdgeParamsRows(&t);
@@ -532,6 +573,10 @@ std::vector<std::string> ParamSections() {
 
 std::string FormatParamValue(const ParamInfo& info, double value) {
   if (info.type == ParamType::kBool) return value != 0 ? "true" : "false";
+  if (info.type == ParamType::kChoice) {
+    const size_t i = size_t(value);
+    return i < info.choices.size() ? info.choices[i] : "?";
+  }
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
   if (info.type == ParamType::kInt) return std::to_string(static_cast<long long>(value));
   // the shortest of 15 and 17 digits that reads back as the same double
@@ -554,6 +599,17 @@ std::string ParseParamValue(const ParamInfo& info, const std::string& text, doub
       return "expected true or false" + got;
     }
     return "";
+  }
+  if (info.type == ParamType::kChoice) {
+    for (size_t i = 0; i < info.choices.size(); ++i) {
+      if (text == info.choices[i]) {
+        *value = double(i);
+        return "";
+      }
+    }
+    std::string names;
+    for (const std::string& c : info.choices) names += (names.empty() ? "" : ", ") + c;
+    return "expected one of " + names + got;
   }
   const bool is_int = info.type == ParamType::kInt;
   const char* what = is_int ? "expected an integer" : "expected a number";
@@ -634,6 +690,8 @@ nlohmann::json ParamsJson(const RunParams& params) {
     const ParamInfo& info = *FindParam(name);
     if (info.type == ParamType::kBool) {
       out[name] = value != 0;
+    } else if (info.type == ParamType::kChoice) {
+      out[name] = FormatParamValue(info, value);
     } else if (info.type == ParamType::kInt) {
       out[name] = static_cast<long long>(value);
     } else if (std::isinf(value)) {
@@ -647,12 +705,14 @@ nlohmann::json ParamsJson(const RunParams& params) {
 
 void PrintParamTable(std::ostream& out) {
   static const RunParams kDefaults;
-  const char* kTypes[] = {"number", "integer", "bool"};
+  const char* kTypes[] = {"number", "integer", "bool", "choice"};
   for (const ParamInfo& info : ParamTable()) {
     out << info.name << "\t" << kTypes[int(info.type)] << "\t"
         << FormatParamValue(info, info.get(kDefaults)) << "\t";
     if (info.type == ParamType::kBool) {
       out << "true/false";
+    } else if (info.type == ParamType::kChoice) {
+      for (size_t i = 0; i < info.choices.size(); ++i) out << (i ? "/" : "") << info.choices[i];
     } else {
       out << FormatParamValue(info, info.min) << ".." << FormatParamValue(info, info.max);
     }

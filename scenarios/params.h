@@ -15,6 +15,7 @@
 
 #include "navigation/planner.h"
 #include "perception/localization.h"
+#include "perception/visual_odometry.h"
 #include "perception/mapping.h"
 #include "perception/segmentation.h"
 #include "perception/step_edge.h"
@@ -42,6 +43,8 @@ struct PerceptionParams {
   double rim_keep_height = 0.40;  // column-rim points this high above the robot's floor count
   perception::MapParams map = MapDefaults();
   perception::LocalizationParams localization;
+  perception::VisualOdometryParams visual_odometry;
+  int view_every_steps = 0;  // while walking, a view every this many footsteps; 0 = none
 };
 
 // The mission's behaviour: how far a motion command goes before the robot re-plans, and when it
@@ -91,7 +94,7 @@ struct RunParams {
   perception::StepEdgeParams step_edge;
 };
 
-enum class ParamType { kDouble, kInt, kBool };
+enum class ParamType { kDouble, kInt, kBool, kChoice };
 
 // One row of the table: a parameter's name, type, range, meaning and where it lives. Values
 // pass as double (exact for the ints and bools here).
@@ -100,6 +103,7 @@ struct ParamInfo {
   ParamType type = ParamType::kDouble;
   double min = 0, max = 0;  // the sane range, inclusive; +inf allowed where max is +inf
   std::string meaning;      // one line
+  std::vector<std::string> choices;  // kChoice: the names of the values 0, 1, ...
   std::function<double(const RunParams&)> get;
   std::function<void(RunParams*, double)> set;
   // extra rule beyond the range ("" if the value passes): multiple of 16, odd, ...

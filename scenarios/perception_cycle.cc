@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <iostream>
 
 #include <nlohmann/json.hpp>
@@ -70,6 +72,31 @@ perception::LabelImage WorldSurfaces(const perception::LabelImage& surfaces,
   return world;
 }
 
+namespace {
+// the depth of the points, NaN on the robot's own body (its boxes grown by `margin`): the body
+// moves with the camera, and visual odometry must not follow it
+perception::DepthImage DepthOffBody(const perception::PointImage& points_C,
+                                    const Eigen::Isometry3d& X_RC,
+                                    const std::vector<sim::RobotBox>& body_R, double margin) {
+  perception::DepthImage depth = perception::DepthOf(points_C);
+  std::vector<std::pair<Eigen::Isometry3f, Eigen::Array3f>> boxes_C;  // X_BC, half size
+  for (const sim::RobotBox& box : body_R) {
+    boxes_C.push_back({(box.X_RB.inverse() * X_RC).cast<float>(),
+                       box.half_size.cast<float>().array() + float(margin)});
+  }
+  for (size_t i = 0; i < depth.data.size(); ++i) {
+    if (!std::isfinite(depth.data[i])) continue;
+    for (const auto& [X_BC, half] : boxes_C) {
+      if (((X_BC * points_C.points[i]).array().abs() <= half).all()) {
+        depth.data[i] = std::numeric_limits<float>::quiet_NaN();
+        break;
+      }
+    }
+  }
+  return depth;
+}
+}  // namespace
+
 ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const StereoView& view,
                         const sim::Humanoid& humanoid, const perception::Pose2& robot_G,
                         double floor_z, const Eigen::Isometry3d& X_RC,
@@ -110,9 +137,23 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
 
   // the pose, corrected by the walls seen before; the camera and the body go with it
   if (localization != nullptr) {
-    result.robot_G = perception::CorrectPose(params.localization, result.planes.planes,
-                                             result.points.width * result.points.height, X_RC,
-                                             robot_G, localization);
+    const auto start_localization = Clock::now();
+    const perception::GrayImage gray = perception::ToGray(view.left);
+    const perception::DepthImage depth =
+        params.subsample ? perception::DepthImage()
+                         : DepthOffBody(result.points, X_RC, body_R, params.label.self_filter_margin);
+    perception::LocalizationView in;
+    in.planes_C = &result.planes.planes;
+    in.image_pixels = result.points.width * result.points.height;
+    in.gray = &gray;
+    in.depth = depth.empty() ? nullptr : &depth;
+    in.intrinsics = view.intrinsics;
+    in.X_RC = X_RC;
+    in.floor_z = floor_z;
+    result.localization = perception::LocalizeView(params.localization, params.visual_odometry,
+                                                   in, robot_G, localization);
+    result.robot_G = result.localization.pose_G;
+    result.localization_ms = MillisecondsSince(start_localization);
   }
   const Eigen::Isometry3d X_GR = perception::Planar(result.robot_G, floor_z);
   const Eigen::Isometry3d X_GC = X_GR * X_RC;

@@ -30,7 +30,8 @@ struct ViewResult {
   perception::Pose2 robot_G;       // the pose the maps were updated with (localized if asked)
   // the labelled points the maps were updated with (grid frame, robot's own body dropped)
   std::vector<perception::LabelledPoint> labelled_G;
-  double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0;
+  perception::LocalizationReport localization;  // what localizing the view did
+  double stereo_ms = 0, segmentation_ms = 0, mapping_ms = 0, localization_ms = 0;
 };
 
 // The look-around head sweep a mission starts with: the controller's near and middle rings plus

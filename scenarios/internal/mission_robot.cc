@@ -174,6 +174,8 @@ sim::ControllerParams ControllerParamsFor(const Scenario& scenario) {
   sim::ControllerParams p;
   p.odometry_noise_xy = scenario.odometry_noise_xy;
   p.odometry_noise_yaw = scenario.odometry_noise_yaw;
+  p.odometry_stride_scale = scenario.odometry_stride_scale;
+  p.odometry_yaw_bias = scenario.odometry_yaw_bias;
   p.seed = unsigned(scenario.seed);
   return p;
 }
@@ -188,7 +190,8 @@ MissionRobot::MissionRobot(const Scenario& scenario, const RunParams& params,
       edge_params_(params.step_edge),
       planner_(*planner),
       trajectory_(OpenLog(options.out_dir + "/trajectory.csv",
-                          "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action\n")),
+                          "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action,"
+                          "settled\n")),
       cycles_(OpenLog(options.out_dir + "/cycles.csv",
                       "cycle,step,odom_x,odom_y,odom_yaw,posture,plan,plan_cost,plan_length,"
                       "decision,target_x,target_y,explorations,thrashes\n")),
@@ -338,9 +341,15 @@ void MissionRobot::OnTick() {
   path_length_ += std::hypot(t.x - last_true_.x, t.y - last_true_.y);
   last_true_ = t;
   char row[256];
-  std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%s\n", controller_.steps(),
-                controller_.ticks(), t.x, t.y, t.yaw, o.x, o.y, o.yaw, current_move_.c_str());
+  const bool settled = controller_.settled();
+  std::snprintf(row, sizeof(row), "%d,%d,%.5f,%.5f,%.5f,%.5f,%.5f,%.5f,%s,%d\n",
+                controller_.steps(), controller_.ticks(), t.x, t.y, t.yaw, o.x, o.y, o.yaw,
+                current_move_.c_str(), settled ? 1 : 0);
   trajectory_ << row;
+  if (settled) {
+    settled_errors_.push_back({std::hypot(o.x - t.x, o.y - t.y), std::abs(WrapAngle(o.yaw - t.yaw)),
+                               path_length_});
+  }
   if (controller_.mode() == sim::Mode::kStanding) NoteWalked(o);
 }
 
@@ -350,8 +359,26 @@ void MissionRobot::RunController() {
   const int steps_before = controller_.steps();
   controller_.RunUntilIdle(world_.model(), world_.data(), [&](int) { OnTick(); });
   perception::PredictPose(before, believed(),
-                          (controller_.steps() - steps_before) * step_covariance_, &localization_);
+                          IncrementCovariance(before, believed(), controller_.steps() - steps_before),
+                          &localization_);
+  if (perception_.localization.mode == perception::LocalizationMode::kTruth) {
+    controller_.CorrectBelievedPose(TruePose());
+  }
   timing_["control"].push_back(Ms(start));
+}
+
+// The odometry's covariance over `steps` footsteps from `before` to `after`, in the robot frame
+// of `before`: the random walk per footstep and the systematic part, whole over the increment
+// (the stride scale along the displacement, the yaw bias for every footstep).
+Eigen::Matrix3d MissionRobot::IncrementCovariance(const Pose2& before, const Pose2& after,
+                                                  int steps) const {
+  Eigen::Matrix3d covariance = steps * step_covariance_;
+  const Eigen::Vector3d d_R = Relative(before, {after.x, after.y, 0});
+  const Eigen::Vector2d d(d_R.x(), d_R.y());
+  const double s = scenario_.odometry_stride_scale, b = scenario_.odometry_yaw_bias * steps;
+  covariance.topLeftCorner<2, 2>() += s * s * d * d.transpose();
+  covariance(2, 2) += b * b;
+  return covariance;
 }
 
 // one perception cycle at the head's current pose
@@ -370,6 +397,7 @@ void MissionRobot::Perceive() {
   timing_["stereo"].push_back(last_view_.stereo_ms);
   timing_["segmentation"].push_back(last_view_.segmentation_ms);
   timing_["mapping"].push_back(last_view_.mapping_ms);
+  timing_["localization"].push_back(last_view_.localization_ms);
   controller_.CorrectBelievedPose(last_view_.robot_G);
 }
 

@@ -98,12 +98,21 @@ class MissionRobot {
   const std::map<std::string, std::vector<double>>& timing() const { return timing_; }
   double path_length() const { return path_length_; }
   const StereoView& last_stereo() const { return last_stereo_; }
+  // the believed pose's error at each settled footstep: position (m), heading (rad), and the
+  // path walked by then (m)
+  struct PoseError {
+    double position = 0, yaw = 0, walked = 0;
+  };
+  const std::vector<PoseError>& settled_errors() const { return settled_errors_; }
+  const perception::LocalizationState& localization() const { return localization_; }
   const ViewResult& last_view() const { return last_view_; }
 
  private:
   void OnTick();
   void NoteWalked(const perception::Pose2& at);  // Fog::walked: the standing footprint at `at`
   void RunController();
+  Eigen::Matrix3d IncrementCovariance(const perception::Pose2& before,
+                                      const perception::Pose2& after, int steps) const;
   void Perceive();
   void Look(const sim::HeadAngles& view);
   sim::HeadAngles HeadAtElevation(double pan, double wanted_elevation) const;
@@ -144,6 +153,7 @@ class MissionRobot {
   std::map<std::string, int> actions_;
   std::map<std::string, std::vector<double>> timing_;
   double path_length_ = 0;
+  std::vector<PoseError> settled_errors_;
   perception::Pose2 last_true_;
   std::string current_move_ = "look";
   int last_step_logged_ = 0;

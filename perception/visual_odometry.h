@@ -1,0 +1,97 @@
+// Visual odometry of the head camera against keyframes: each view (grey image and depth)
+// is registered to the keyframe that overlaps it best, seeded with the pose the robot believes
+// (footstep odometry and the head's kinematics), and the registration gives a measurement of the
+// robot's planar pose in the grid frame. Errors add up only where a new keyframe is taken, not
+// at every view. The registration is OpenCV contrib's RgbdOdometry (photometric and depth).
+#ifndef FOGNAV_PERCEPTION_VISUAL_ODOMETRY_H_
+#define FOGNAV_PERCEPTION_VISUAL_ODOMETRY_H_
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "perception/types.h"
+
+namespace fognav::perception {
+
+struct VisualOdometryParams {
+  double min_depth = 0.2;        // metres; nearer points are not used
+  double max_depth = 6.0;        // metres; farther points are not used
+  double max_depth_diff = 0.07;  // metres; a correspondence's largest depth difference
+  int iterations = 20;           // per pyramid level (of three)
+  double max_points_part = 1.0;  // share of the image's points used
+  // a registration is used only if it moves the seed by at most this much
+  double max_correction = 0.12;        // metres
+  double max_correction_angle = 0.12;  // rad
+  // its depth agreement: the share of the keyframe's points that land within
+  // agree_depth + agree_depth_per_m * depth of the view's depth
+  double agree_depth = 0.02;         // metres
+  double agree_depth_per_m = 0.03;   // metres per metre of depth
+  double min_agreement = 0.5;        // fewest such points, as a share of those that land
+  double min_overlap = 0.35;         // share of a keyframe's points inside the view to register
+  double keyframe_overlap = 0.6;     // a new keyframe when no keyframe overlaps more
+  int max_keyframes = 60;            // the oldest beyond the start's are dropped
+  // the registration's own noise on the robot's pose (on rendered course pairs with stereo)
+  double sigma_xy = 0.004;   // metres
+  double sigma_yaw = 0.004;  // rad
+  double gate = 3.0;  // Mahalanobis distance to the odometry beyond which it is rejected
+};
+
+// A view kept to register later views against.
+struct Keyframe {
+  GrayImage gray;
+  DepthImage depth;  // camera z, metres; NaN where none
+  CameraIntrinsics intrinsics;
+  Eigen::Isometry3d X_GC = Eigen::Isometry3d::Identity();  // camera in the grid frame
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();    // of the robot pose (x, y, yaw)
+  bool anchored = false;  // taken at the start, where the pose is known exactly
+};
+
+struct VisualOdometryState {
+  std::vector<Keyframe> keyframes;
+  int views = 0;    // views registered or tried (LocalizeView counts them)
+  int tracked = 0;  // views whose registration was fused
+};
+
+// What one view's registration gave.
+struct VisualOdometryResult {
+  bool tracked = false;  // a measurement the caller may fuse
+  int keyframe = -1;     // index registered against, -1 for none
+  double overlap = 0;    // share of that keyframe's points inside the view at the seed
+  double agreement = 0;  // depth agreement after registration
+  Pose2 robot_G;         // the measured robot pose (valid when tracked)
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // its noise, with the keyframe's
+  std::string why;       // when not tracked: "no keyframe", "no overlap", "failed", ...
+};
+
+// A grey image (ITU-R 601 luma) of an RGB image.
+GrayImage ToGray(const RgbImage& image);
+// The depth (camera z) of a point image, NaN where it has no point.
+DepthImage DepthOf(const PointImage& points);
+
+// Registers the view (`gray`, `depth`, intrinsics K) against the best keyframe. The seed is the
+// robot's believed pose robot_G on a floor floor_z high with the camera at X_RC in the robot
+// frame. Does not change the keyframes.
+VisualOdometryResult RegisterView(const VisualOdometryParams& params, const GrayImage& gray,
+                                  const DepthImage& depth, const CameraIntrinsics& K,
+                                  const Eigen::Isometry3d& X_RC, const Pose2& robot_G,
+                                  double floor_z, const VisualOdometryState& state);
+
+// Share of the keyframe's points (sampled) that fall inside a view of intrinsics K taken with
+// the camera at X_GC.
+double KeyframeOverlap(const VisualOdometryParams& params, const Keyframe& keyframe,
+                       const CameraIntrinsics& K,
+                       const Eigen::Isometry3d& X_GC);
+
+// Where no keyframe overlaps the view at its (corrected) pose X_GC by
+// keyframe_overlap, keeps it as a keyframe with the pose covariance `covariance`.
+void UpdateKeyframes(const VisualOdometryParams& params, const GrayImage& gray,
+                     const DepthImage& depth, const CameraIntrinsics& K,
+                     const Eigen::Isometry3d& X_GC, const Eigen::Matrix3d& covariance,
+                     bool anchored, VisualOdometryState* state);
+
+}  // namespace fognav::perception
+
+#endif  // FOGNAV_PERCEPTION_VISUAL_ODOMETRY_H_
