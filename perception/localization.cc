@@ -49,10 +49,30 @@ GridLine ToGrid(const LineObservation& line, const Pose2& pose) {
 
 Eigen::Vector2d Normal(double angle) { return {std::cos(angle), std::sin(angle)}; }
 
-// The state's columns an observation of landmark i depends on: the pose's and the landmark's.
-std::array<Eigen::Index, 5> StateColumns(size_t i) {
-  const Eigen::Index k = 3 + 2 * Eigen::Index(i);
+// The state's columns an observation of a landmark depends on: the pose's and the landmark's.
+std::array<Eigen::Index, 5> StateColumns(const WallLandmark& landmark) {
+  const Eigen::Index k = landmark.column;
   return {0, 1, 2, k, k + 1};
+}
+
+// applies a correction of the whole state: the pose, every landmark, every keyframe clone
+Pose2 ApplyDelta(const Pose2& pose_G, const Eigen::VectorXd& delta, LocalizationState* state) {
+  Pose2 pose = pose_G;
+  pose.x += delta(0);
+  pose.y += delta(1);
+  pose.yaw = WrapAngle(pose.yaw + delta(2));
+  for (WallLandmark& l : state->landmarks) {
+    l.angle = WrapAngle(l.angle + delta(l.column));
+    l.offset += delta(l.column + 1);
+  }
+  for (Keyframe& kf : state->visual.keyframes) {
+    if (kf.column < 0) continue;
+    kf.robot_G.x += delta(kf.column);
+    kf.robot_G.y += delta(kf.column + 1);
+    kf.robot_G.yaw = WrapAngle(kf.robot_G.yaw + delta(kf.column + 2));
+    kf.X_GC = Planar(kf.robot_G, kf.floor_z) * kf.X_RC;
+  }
+  return pose;
 }
 
 }  // namespace
@@ -114,7 +134,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
       J_i << 0, 0, 1, -1, 0,                                       // angle
           n.x(), n.y(), n.dot(perp_arm), t.dot(g.centroid_G), -1;  // offset
       Eigen::Matrix<double, 5, 5> P_i;
-      const std::array<Eigen::Index, 5> idx = StateColumns(i);
+      const std::array<Eigen::Index, 5> idx = StateColumns(state->landmarks[i]);
       for (int r = 0; r < 5; ++r) {
         for (int c = 0; c < 5; ++c) P_i(r, c) = P(idx[r], idx[c]);
       }
@@ -130,7 +150,7 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
       // a new landmark: (angle, offset) from the pose and the observation, with both their
       // uncertainties in the grown covariance
       const Eigen::Vector2d n = Normal(g.angle), t(-n.y(), n.x());
-      state->landmarks.push_back({g.angle, n.dot(g.centroid_G), 0});
+      state->landmarks.push_back({g.angle, n.dot(g.centroid_G), 0, n_state});
       Eigen::Matrix<double, 2, 3> G_pose;
       G_pose << 0, 0, 1, n.x(), n.y(), t.dot(g.centroid_G) + n.dot(perp_arm);
       Eigen::Matrix2d G_obs;
@@ -147,21 +167,14 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
     // the Kalman update of pose and landmarks, in O(state^2): P J^T from the five columns J
     // touches, K = P J^T S^-1, P -= K (P J^T)^T; noise-free odometry leaves the pose alone
     // (its rows of the covariance stay zero) and refines only the landmarks
-    const std::array<Eigen::Index, 5> idx = StateColumns(size_t(matched));
+    const std::array<Eigen::Index, 5> idx = StateColumns(state->landmarks[size_t(matched)]);
     Eigen::MatrixXd PJt = Eigen::MatrixXd::Zero(n_state, 2);
     for (int c = 0; c < 5; ++c) PJt += P.col(idx[c]) * J.col(c).transpose();
     Eigen::Matrix2d S = R;
     for (int c = 0; c < 5; ++c) S += J.col(c) * PJt.row(idx[c]);
     const Eigen::MatrixXd K = PJt * S.inverse();
     const Eigen::VectorXd delta = -K * error;
-    pose.x += delta(0);
-    pose.y += delta(1);
-    pose.yaw = WrapAngle(pose.yaw + delta(2));
-    for (size_t i = 0; i < state->landmarks.size(); ++i) {
-      state->landmarks[i].angle =
-          WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
-      state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
-    }
+    pose = ApplyDelta(pose, delta, state);
     P.noalias() -= K * PJt.transpose();
     P = 0.5 * (P + P.transpose()).eval();
     ++state->landmarks[size_t(matched)].matches;
@@ -171,33 +184,94 @@ Pose2 CorrectPose(const LocalizationParams& params, const std::vector<Plane>& pl
 }
 
 Pose2 FusePose(const Pose2& pose_G, const Pose2& measured_G, const Eigen::Matrix3d& R,
-               double gate, LocalizationState* state, bool* accepted) {
+               double gate, LocalizationState* state, bool* accepted, int keyframe) {
   Eigen::MatrixXd& P = state->covariance;
+  const Eigen::Index n = P.rows();
   const Eigen::Vector3d error(measured_G.x - pose_G.x, measured_G.y - pose_G.y,
                               WrapAngle(measured_G.yaw - pose_G.yaw));
-  // H = [I 0]: S = P_pose + R, K = P[:, pose] S^-1
-  const Eigen::Matrix3d S = P.topLeftCorner<3, 3>() + R;
+  // r = pose - (keyframe (+) delta) is zero up to R: H = [I, -J] over the pose's and the
+  // keyframe clone's columns (H = [I] against a keyframe whose pose is exact)
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, n);
+  H.leftCols<3>().setIdentity();
+  const Keyframe* kf =
+      keyframe >= 0 ? &state->visual.keyframes[size_t(keyframe)] : nullptr;
+  if (kf != nullptr && kf->column >= 0) {
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();
+    J(0, 2) = -(measured_G.y - kf->robot_G.y);
+    J(1, 2) = measured_G.x - kf->robot_G.x;
+    H.block<3, 3>(0, kf->column) = -J;
+  }
+  const Eigen::MatrixXd PHt = P * H.transpose();
+  const Eigen::Matrix3d S = H * PHt + R;
   const Eigen::LDLT<Eigen::Matrix3d> S_ldlt(S);
   const bool ok = S_ldlt.info() == Eigen::Success && S.determinant() > 0 &&
                   error.dot(S_ldlt.solve(error)) <= gate * gate;
   if (accepted != nullptr) *accepted = ok;
   if (!ok) return pose_G;
-  const Eigen::MatrixXd PHt = P.leftCols<3>();
   const Eigen::MatrixXd K = S_ldlt.solve(PHt.transpose()).transpose();
-  const Eigen::VectorXd delta = K * error;
-  Pose2 pose = pose_G;
-  pose.x += delta(0);
-  pose.y += delta(1);
-  pose.yaw = WrapAngle(pose.yaw + delta(2));
-  for (size_t i = 0; i < state->landmarks.size(); ++i) {
-    state->landmarks[i].angle =
-        WrapAngle(state->landmarks[i].angle + delta(3 + 2 * Eigen::Index(i)));
-    state->landmarks[i].offset += delta(4 + 2 * Eigen::Index(i));
-  }
+  const Pose2 pose = ApplyDelta(pose_G, K * error, state);
   P.noalias() -= K * PHt.transpose();
   P = 0.5 * (P + P.transpose()).eval();
   return pose;
 }
+
+namespace {
+// removes `count` state columns from `column` on, and renumbers the later ones
+void RemoveColumns(Eigen::Index column, Eigen::Index count, LocalizationState* state) {
+  Eigen::MatrixXd& P = state->covariance;
+  const Eigen::Index n = P.rows(), tail = n - column - count;
+  Eigen::MatrixXd Q(n - count, n - count);
+  Q.topLeftCorner(column, column) = P.topLeftCorner(column, column);
+  Q.topRightCorner(column, tail) = P.topRightCorner(column, tail);
+  Q.bottomLeftCorner(tail, column) = P.bottomLeftCorner(tail, column);
+  Q.bottomRightCorner(tail, tail) = P.bottomRightCorner(tail, tail);
+  P = std::move(Q);
+  for (WallLandmark& l : state->landmarks) {
+    if (l.column > column) l.column -= count;
+  }
+  for (Keyframe& kf : state->visual.keyframes) {
+    if (kf.column > column) kf.column -= count;
+  }
+}
+
+// keeps the view as a keyframe where none overlaps it; an uncertain pose is cloned into the
+// state, so that later registrations to it are correlated with the pose as they are
+void AddKeyframe(const VisualOdometryParams& params, const LocalizationView& view,
+                 const Pose2& pose_G, LocalizationState* state) {
+  VisualOdometryState& vo = state->visual;
+  const Eigen::Isometry3d X_GC = Planar(pose_G, view.floor_z) * view.X_RC;
+  for (const Keyframe& kf : vo.keyframes) {
+    if (KeyframeOverlap(params, kf, view.intrinsics, X_GC) >= params.keyframe_overlap) return;
+  }
+  if (int(vo.keyframes.size()) >= params.max_keyframes) {
+    // the oldest that is not exact goes first
+    auto oldest = std::find_if(vo.keyframes.begin(), vo.keyframes.end(),
+                               [](const Keyframe& k) { return k.column >= 0; });
+    if (oldest == vo.keyframes.end()) oldest = vo.keyframes.begin();
+    const Eigen::Index column = oldest->column;
+    vo.keyframes.erase(oldest);
+    if (column >= 0) RemoveColumns(column, 3, state);
+  }
+  Keyframe kf;
+  kf.gray = *view.gray;
+  kf.depth = *view.depth;
+  kf.intrinsics = view.intrinsics;
+  kf.robot_G = pose_G;
+  kf.floor_z = view.floor_z;
+  kf.X_RC = view.X_RC;
+  kf.X_GC = X_GC;
+  Eigen::MatrixXd& P = state->covariance;
+  if (P.topLeftCorner<3, 3>().trace() > 0) {
+    const Eigen::Index n = P.rows();
+    P.conservativeResize(n + 3, n + 3);
+    P.bottomRightCorner<3, 3>() = P.topLeftCorner<3, 3>();
+    P.block(n, 0, 3, n) = P.topLeftCorner(3, n);
+    P.block(0, n, n, 3) = P.block(n, 0, 3, n).transpose();
+    kf.column = n;
+  }
+  vo.keyframes.push_back(std::move(kf));
+}
+}  // namespace
 
 LocalizationReport LocalizeView(const LocalizationParams& params,
                                 const VisualOdometryParams& visual, const LocalizationView& view,
@@ -216,7 +290,7 @@ LocalizationReport LocalizeView(const LocalizationParams& params,
                                  pose_G, view.floor_z, state->visual);
     if (report.visual.tracked) {
       report.pose_G = FusePose(pose_G, report.visual.robot_G, report.visual.covariance,
-                               visual.gate, state, &report.visual_fused);
+                               visual.gate, state, &report.visual_fused, report.visual.keyframe);
     }
     ++state->visual.views;
     if (report.visual_fused) ++state->visual.tracked;
@@ -225,12 +299,7 @@ LocalizationReport LocalizeView(const LocalizationParams& params,
     report.pose_G = CorrectPose(params, *view.planes_C, view.image_pixels, view.X_RC,
                                 report.pose_G, state);
   }
-  if (use_visual) {
-    const Eigen::Matrix3d P = state->PoseCovariance();
-    UpdateKeyframes(visual, *view.gray, *view.depth, view.intrinsics,
-                    Planar(report.pose_G, view.floor_z) * view.X_RC, P, P.trace() <= 0,
-                    &state->visual);
-  }
+  if (use_visual) AddKeyframe(visual, view, report.pose_G, state);
   return report;
 }
 

@@ -57,6 +57,7 @@ struct WallLandmark {
   double angle = 0;   // of the unit normal n = (cos, sin), radians
   double offset = 0;  // rho, metres: n . p = rho
   int matches = 0;    // views of it since it was added
+  Eigen::Index column = 3;  // its first column in the filter's state
 };
 
 // The filter's state: the pose is the caller's (the odometry pose it corrects); the covariance
@@ -114,11 +115,13 @@ LocalizationReport LocalizeView(const LocalizationParams& params,
                                 const Pose2& pose_G, LocalizationState* state);
 
 // Fuses a measurement `measured_G` of the pose (grid frame) with noise covariance R into the
-// filter whose pose is pose_G: returns the corrected pose and updates the covariance (pose and
-// landmarks). A measurement farther than `gate` (Mahalanobis, over the pose covariance plus R)
-// is rejected: pose_G is returned and *accepted (if given) set false.
+// filter whose pose is pose_G: returns the corrected pose and updates the state. With
+// `keyframe` (an index into state->visual.keyframes) the measurement is relative to that
+// keyframe, whose cloned pose it also corrects. A measurement farther than `gate`
+// (Mahalanobis) is rejected: pose_G is returned and *accepted (if given) set false.
 Pose2 FusePose(const Pose2& pose_G, const Pose2& measured_G, const Eigen::Matrix3d& R,
-               double gate, LocalizationState* state, bool* accepted = nullptr);
+               double gate, LocalizationState* state, bool* accepted = nullptr,
+               int keyframe = -1);
 
 }  // namespace fognav::perception
 

@@ -121,13 +121,14 @@ VisualOdometryResult RegisterView(const VisualOdometryParams& params, const Gray
     return result;
   }
   const Eigen::Isometry3d X_GC_seed = Planar(robot_G, floor_z) * X_RC;
-  // the keyframe that overlaps most; among those that overlap enough, the most certain
+  // the keyframe that overlaps most; among those that overlap enough, the oldest (exact ones
+  // come first)
   int best = -1;
   double best_overlap = 0, best_certainty = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < state.keyframes.size(); ++i) {
     const Keyframe& kf = state.keyframes[i];
     const double overlap = KeyframeOverlap(params, kf, K, X_GC_seed);
-    const double trace = kf.covariance.trace();
+    const double trace = kf.column < 0 ? -1.0 : double(i);
     const bool enough = overlap >= params.keyframe_overlap;
     const bool best_enough = best_overlap >= params.keyframe_overlap;
     if (best < 0 || (enough && (!best_enough || trace < best_certainty)) ||
@@ -188,35 +189,11 @@ VisualOdometryResult RegisterView(const VisualOdometryParams& params, const Gray
   }
   result.tracked = true;
   result.robot_G = PlanarOf(X_GC * X_RC.inverse());
-  result.covariance = kf.covariance;
-  result.covariance.diagonal() += Eigen::Vector3d(params.sigma_xy * params.sigma_xy,
+  result.covariance = Eigen::Matrix3d::Zero();
+  result.covariance.diagonal() = Eigen::Vector3d(params.sigma_xy * params.sigma_xy,
                                                   params.sigma_xy * params.sigma_xy,
                                                   params.sigma_yaw * params.sigma_yaw);
   return result;
-}
-
-void UpdateKeyframes(const VisualOdometryParams& params, const GrayImage& gray,
-                     const DepthImage& depth, const CameraIntrinsics& K,
-                     const Eigen::Isometry3d& X_GC, const Eigen::Matrix3d& covariance,
-                     bool anchored, VisualOdometryState* state) {
-  for (const Keyframe& kf : state->keyframes) {
-    if (KeyframeOverlap(params, kf, K, X_GC) >= params.keyframe_overlap) return;
-  }
-  Keyframe kf;
-  kf.gray = gray;
-  kf.depth = depth;
-  kf.intrinsics = K;
-  kf.X_GC = X_GC;
-  kf.covariance = covariance;
-  kf.anchored = anchored;
-  // drop the oldest keyframe that is not an anchor
-  if (int(state->keyframes.size()) >= params.max_keyframes) {
-    auto oldest = std::find_if(state->keyframes.begin(), state->keyframes.end(),
-                               [](const Keyframe& k) { return !k.anchored; });
-    if (oldest == state->keyframes.end()) return;
-    state->keyframes.erase(oldest);
-  }
-  state->keyframes.push_back(std::move(kf));
 }
 
 }  // namespace fognav::perception

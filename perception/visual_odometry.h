@@ -20,8 +20,8 @@ struct VisualOdometryParams {
   double min_depth = 0.2;        // metres; nearer points are not used
   double max_depth = 6.0;        // metres; farther points are not used
   double max_depth_diff = 0.07;  // metres; a correspondence's largest depth difference
-  int iterations = 20;           // per pyramid level (of three)
-  double max_points_part = 1.0;  // share of the image's points used
+  int iterations = 10;           // per pyramid level (of three)
+  double max_points_part = 0.2;  // share of the image's points used
   // a registration is used only if it moves the seed by at most this much
   double max_correction = 0.12;        // metres
   double max_correction_angle = 0.12;  // rad
@@ -44,9 +44,13 @@ struct Keyframe {
   GrayImage gray;
   DepthImage depth;  // camera z, metres; NaN where none
   CameraIntrinsics intrinsics;
-  Eigen::Isometry3d X_GC = Eigen::Isometry3d::Identity();  // camera in the grid frame
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();    // of the robot pose (x, y, yaw)
-  bool anchored = false;  // taken at the start, where the pose is known exactly
+  Pose2 robot_G;            // the robot's pose when it was taken, as the filter now holds it
+  double floor_z = 0;       // the robot's floor then
+  Eigen::Isometry3d X_RC = Eigen::Isometry3d::Identity();  // the camera in the robot frame
+  Eigen::Isometry3d X_GC = Eigen::Isometry3d::Identity();  // the camera in the grid frame
+  // the first of its pose's three columns in the localization filter's state; -1 for a
+  // keyframe whose pose is exact (taken before the odometry had any error)
+  Eigen::Index column = -1;
 };
 
 struct VisualOdometryState {
@@ -62,7 +66,7 @@ struct VisualOdometryResult {
   double overlap = 0;    // share of that keyframe's points inside the view at the seed
   double agreement = 0;  // depth agreement after registration
   Pose2 robot_G;         // the measured robot pose (valid when tracked)
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // its noise, with the keyframe's
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  // the registration's noise
   std::string why;       // when not tracked: "no keyframe", "no overlap", "failed", ...
 };
 
@@ -84,13 +88,6 @@ VisualOdometryResult RegisterView(const VisualOdometryParams& params, const Gray
 double KeyframeOverlap(const VisualOdometryParams& params, const Keyframe& keyframe,
                        const CameraIntrinsics& K,
                        const Eigen::Isometry3d& X_GC);
-
-// Where no keyframe overlaps the view at its (corrected) pose X_GC by
-// keyframe_overlap, keeps it as a keyframe with the pose covariance `covariance`.
-void UpdateKeyframes(const VisualOdometryParams& params, const GrayImage& gray,
-                     const DepthImage& depth, const CameraIntrinsics& K,
-                     const Eigen::Isometry3d& X_GC, const Eigen::Matrix3d& covariance,
-                     bool anchored, VisualOdometryState* state);
 
 }  // namespace fognav::perception
 

@@ -356,6 +356,7 @@ void AddVisualOdometryRows(std::vector<ParamInfo>* t) {
   add("max_depth_diff", kMetres, "largest depth difference of a correspondence, metres",
       &S::max_depth_diff);
   add("iterations", {1, 1000}, "iterations per pyramid level", &S::iterations);
+  add("max_points_part", kShare, "share of the image's points used", &S::max_points_part);
   add("max_correction", kMetres, "largest correction of the seed used, metres",
       &S::max_correction);
   add("max_correction_angle", kAngle, "largest rotation of the seed used, rad",

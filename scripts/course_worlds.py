@@ -26,7 +26,8 @@ import sys
 from random_worlds import WALL_H, WALL_T, flow, lst
 
 SECTIONS = ("blocks", "stairs", "gap", "table")
-NOISE = {"xy": 0.005, "yaw_deg": 0.5}  # per step, as scenarios/noisy_odometry.yaml
+# per step as scenarios/noisy_odometry.yaml, and a systematic part drawn once per mission
+NOISE = {"xy": 0.005, "yaw_deg": 0.5, "stride_scale": 0.03, "yaw_bias_deg": 0.2}
 HEAD_TOP = 0.56  # highest underside of a table top: below the standing head (0.58 m)
 MAX_RISE = 0.045  # highest riser: below the paper's 5 cm, which the planner's h_stairs meets exactly
 

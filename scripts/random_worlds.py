@@ -163,7 +163,7 @@ class Room:
         if choice == 0:
             self.sensor = {"width": 320, "height": 240, "hfov_deg": rng.choice([55, 60])}
         elif choice == 1:
-            self.noise = {"xy": 0.005, "yaw_deg": 0.5}
+            self.noise = {"xy": 0.005, "yaw_deg": 0.5, "stride_scale": 0.03, "yaw_bias_deg": 0.2}
         else:
             self.start = (self.start[0], self.start[1], rng.choice([-120, -90, 90, 150]))
 

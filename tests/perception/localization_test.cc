@@ -151,5 +151,98 @@ TEST(Localization, PredictionGrowsTheSidewaysUncertaintyWithTheHeadingsLeverArm)
   EXPECT_NEAR(state.covariance(1, 2), std::pow(2 * kDeg, 2), 1e-12);
 }
 
+// A state whose pose has the given standard deviations (x, y, yaw) and no landmarks.
+LocalizationState UncertainPose(double sigma_xy, double sigma_yaw) {
+  LocalizationState state;
+  state.covariance = Eigen::Vector3d(sigma_xy * sigma_xy, sigma_xy * sigma_xy,
+                                     sigma_yaw * sigma_yaw).asDiagonal();
+  return state;
+}
+
+TEST(PoseFusion, AnExactMeasurementWeighsAgainstTheOdometryByTheirCovariances) {
+  LocalizationState state = UncertainPose(0.02, 0.02);
+  const Pose2 odometry{1.0, 0.0, 0.0}, measured{1.03, -0.01, 0.01};
+  // equal variances: the fused pose lies half way, and its variance halves
+  const Eigen::Matrix3d R = state.PoseCovariance();
+  bool accepted = false;
+  const Pose2 fused = FusePose(odometry, measured, R, 3.0, &state, &accepted);
+  EXPECT_TRUE(accepted);
+  EXPECT_NEAR(fused.x, 1.015, 1e-9);
+  EXPECT_NEAR(fused.y, -0.005, 1e-9);
+  EXPECT_NEAR(fused.yaw, 0.005, 1e-9);
+  EXPECT_NEAR(state.PoseCovariance()(0, 0), 0.5 * 0.02 * 0.02, 1e-12);
+}
+
+TEST(PoseFusion, AMeasurementBeyondTheGateIsRejected) {
+  LocalizationState state = UncertainPose(0.01, 0.01);
+  const Eigen::Matrix3d before = state.PoseCovariance();
+  bool accepted = true;
+  const Pose2 pose{1.0, 0.0, 0.0};
+  // 10 cm off against 1 cm of odometry and 4 mm of registration noise
+  const Pose2 fused = FusePose(pose, {1.1, 0.0, 0.0},
+                               Eigen::Vector3d(1.6e-5, 1.6e-5, 1.6e-5).asDiagonal(), 3.0, &state,
+                               &accepted);
+  EXPECT_FALSE(accepted);
+  EXPECT_EQ(fused.x, pose.x);
+  EXPECT_TRUE(state.PoseCovariance().isApprox(before));
+}
+
+// A view localized against keyframes of its own making: the keyframe's pose is cloned into the
+// state, so that registering again and again to a keyframe taken with the same error does not
+// make the filter believe it knows its pose better than when the keyframe was taken.
+TEST(PoseFusion, RegistrationsToAClonedKeyframeDoNotShrinkTheUncertaintyBelowIts) {
+  LocalizationState state = UncertainPose(0.02, 0.01);
+  Keyframe kf;
+  kf.robot_G = {1.0, 0.0, 0.0};
+  kf.column = 3;
+  state.covariance.conservativeResize(6, 6);
+  state.covariance.bottomRightCorner<3, 3>() = state.covariance.topLeftCorner<3, 3>();
+  state.covariance.topRightCorner<3, 3>() = state.covariance.topLeftCorner<3, 3>();
+  state.covariance.bottomLeftCorner<3, 3>() = state.covariance.topLeftCorner<3, 3>();
+  state.visual.keyframes.push_back(kf);
+  const double sigma_before = std::sqrt(state.PoseCovariance()(0, 0));
+  Pose2 pose{1.0, 0.0, 0.0};
+  const Eigen::Matrix3d R = Eigen::Vector3d(1.6e-5, 1.6e-5, 1.6e-5).asDiagonal();
+  for (int i = 0; i < 20; ++i) {
+    bool accepted = false;
+    pose = FusePose(pose, {1.0, 0.0, 0.0}, R, 3.0, &state, &accepted, 0);
+    EXPECT_TRUE(accepted);
+  }
+  // the pose's own uncertainty stays the keyframe's: within 1 %
+  EXPECT_GT(std::sqrt(state.PoseCovariance()(0, 0)), 0.99 * sigma_before);
+  // while an exact keyframe (no column) pins it down to the registration's noise
+  state.visual.keyframes[0].column = -1;
+  pose = FusePose(pose, {1.0, 0.0, 0.0}, R, 3.0, &state, nullptr, 0);
+  EXPECT_LT(std::sqrt(state.PoseCovariance()(0, 0)), 0.005);
+}
+
+// A registration relative to a cloned keyframe corrects the keyframe's pose too: the clone
+// moves with the correction in proportion to its correlation with the pose.
+TEST(PoseFusion, ACorrectionMovesTheCorrelatedKeyframe) {
+  LocalizationState state = UncertainPose(0.02, 0.01);
+  Keyframe kf;
+  kf.robot_G = {0.5, 0.0, 0.0};
+  kf.column = 3;
+  // the keyframe was taken before 0.5 m of odometry that added (1 cm)^2
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(6, 6);
+  const Eigen::Matrix3d P_kf = Eigen::Vector3d(3e-4, 3e-4, 1e-4).asDiagonal();
+  P.topLeftCorner<3, 3>() = P_kf + Eigen::Vector3d(1e-4, 1e-4, 0).asDiagonal().toDenseMatrix();
+  P.bottomRightCorner<3, 3>() = P_kf;
+  P.topRightCorner<3, 3>() = P_kf;
+  P.bottomLeftCorner<3, 3>() = P_kf;
+  state.covariance = P;
+  state.visual.keyframes.push_back(kf);
+  // the registration says the pose is 1 cm further along than the odometry
+  bool accepted = false;
+  const Pose2 fused = FusePose({1.0, 0.0, 0.0}, {1.01, 0.0, 0.0},
+                               Eigen::Vector3d(1e-6, 1e-6, 1e-6).asDiagonal(), 3.0, &state,
+                               &accepted, 0);
+  ASSERT_TRUE(accepted);
+  // only the odometry since the keyframe is in doubt: the pose takes the correction, the
+  // keyframe hardly moves
+  EXPECT_NEAR(fused.x, 1.01, 1e-3);
+  EXPECT_NEAR(state.visual.keyframes[0].robot_G.x, 0.5, 1e-3);
+}
+
 }  // namespace
 }  // namespace fognav::perception

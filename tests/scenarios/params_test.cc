@@ -63,6 +63,7 @@ TEST(Params, TableNamesEachParameterOnceWithItsDefaultInRange) {
   EXPECT_EQ(ParamSections(),
             (std::vector<std::string>{"stereo", "segmentation", "segmentation_ideal", "perception",
                                       "label", "grid", "floor", "fog", "void", "localization",
+                                      "visual_odometry",
                                       "planner", "mission", "step_edge"}));
 }
 
@@ -292,6 +293,21 @@ TEST(Params, ListingHasALinePerParameterWithItsDefault) {
   EXPECT_NE(text.find("grid.min_hits_per_frame\tinteger\t2\t1..1000\t"), std::string::npos);
   EXPECT_NE(text.find("fog.infer_tops\tbool\ttrue\ttrue/false\t"), std::string::npos);
   EXPECT_NE(text.find("label.max_range\tnumber\tinf\t0..inf\t"), std::string::npos);
+}
+
+// An enumeration is named in files, flags and reports, and a wrong name lists the right ones.
+TEST(Params, AChoiceIsReadAndWrittenByName) {
+  const ParamInfo& mode = *FindParam("localization.mode");
+  EXPECT_EQ(mode.type, ParamType::kChoice);
+  double value = -1;
+  EXPECT_EQ(ParseParamValue(mode, "truth", &value), "");
+  RunParams params;
+  mode.set(&params, value);
+  EXPECT_EQ(params.perception.localization.mode, perception::LocalizationMode::kTruth);
+  EXPECT_EQ(ParamsJson(params)["localization.mode"], "truth");
+  EXPECT_EQ(ParseParamValue(mode, "gps", &value),
+            "expected one of odometry, walls, visual, truth, got 'gps'");
+  EXPECT_EQ(FormatParamValue(mode, mode.get(RunParams{})), "visual");
 }
 
 }  // namespace

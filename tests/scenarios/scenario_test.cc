@@ -59,6 +59,14 @@ TEST(Scenario, ParsesAValidFileWithDefaultsAndRadians) {
   const auto& table = std::get<TableObject>(s.objects[2]);
   EXPECT_DOUBLE_EQ(table.top, 0.03);
   EXPECT_DOUBLE_EQ(table.leg, 0.04);
+  EXPECT_EQ(s.odometry_stride_scale, 0.0);
+  EXPECT_EQ(s.odometry_yaw_bias, 0.0);
+  const Scenario noisy = ParseScenario(
+      Replace(kValid, "name: unit",
+              "name: unit\nodometry_noise: {xy: 0.005, stride_scale: 0.03, yaw_bias_deg: 0.2}"),
+      "course.yaml");
+  EXPECT_DOUBLE_EQ(noisy.odometry_stride_scale, 0.03);
+  EXPECT_NEAR(noisy.odometry_yaw_bias, 0.2 * M_PI / 180, 1e-12);
 }
 
 TEST(Scenario, WorldHoldsExactlyTheListedSolids) {
@@ -114,6 +122,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"start: [0.0, 0.0, 90.0]", "start: [0.0, 0.0]",
                  "course.yaml:3: robot.start: expected a list of 3 numbers"},
         BadInput{"name: unit", "name: Unit Course", "course.yaml:1: name: expected lower-case"},
+        BadInput{"name: unit", "name: unit\nodometry_noise: {stride_scale: -0.03}",
+                 "course.yaml:2: odometry_noise.stride_scale:"},
+        BadInput{"name: unit", "name: unit\nodometry_noise: {yaw_bias: 0.2}",
+                 "course.yaml:2: odometry_noise.yaw_bias: unknown key"},
         // missing required keys
         BadInput{"goal:\n  position: [3.0, 0.0]\n", "",
                  "course.yaml:1: goal: missing required key"},

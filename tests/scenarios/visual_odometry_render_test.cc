@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "perception/localization.h"
 #include "perception/segmentation.h"
 #include "perception/visual_odometry.h"
 #include "scenarios/params.h"
@@ -93,15 +94,84 @@ TEST_F(VisualOdometryRender, RecoversMotionsWithStereoDepth) {
       {"turn", {0, 0, 0}, {0, 0, 0.35}, 0.4},
       {"side-step", {0.2, 0, 0}, {0.2, 0.1, 0}, 0.4},
       {"turn and walk", {0.3, -0.1, 0.2}, {0.45, -0.05, 0.0}, 0.4},
+      {"onto a tread (3 cm up)", {1.1, 0, 0}, {1.27, 0, 0}, 0.6},
   };
   for (const Case& c : cases) {
-    const Frame a = View(c.a, c.tilt, true), b = View(c.b, c.tilt, true);
+    const double z_b = c.b.x > 1.25 ? 0.03 : 0.0;  // the course's first tread starts at 1.4 m
+    const Frame a = View(c.a, c.tilt, true), b = View(c.b, c.tilt, true, z_b);
     double yaw_error = 0;
-    const double error = Register(a, c.a, b, c.b, c.tilt, 0, &yaw_error);
+    const double error = Register(a, c.a, b, c.b, c.tilt, z_b, &yaw_error);
     std::printf("%s: %.4f m, %.3f deg\n", c.name, error, yaw_error / kDeg);
     EXPECT_LT(error, 0.006) << c.name;
     EXPECT_LT(yaw_error, 0.4 * kDeg) << c.name;
   }
+}
+
+// Crawling: the eyes 0.24 m high and tilted up, a crawl cycle forward.
+TEST_F(VisualOdometryRender, RecoversACrawlCycle) {
+  const Eigen::Isometry3d X_RC = LookAt({0.12, 0.0, 0.24}, {1.1, 0.0, 0.45});
+  const Pose2 a{2.9, 0.0, 0.0}, b{2.96, 0.0, 0.02};
+  auto view = [&](const Pose2& pose) {
+    PlaceRobot(world_.get(), Pose2{-0.3, 0.0, 0});
+    const StereoView v =
+        RenderStereo(renderer_.get(), *world_, perception::Planar(pose) * X_RC, scenario_.sensor);
+    Frame f;
+    f.gray = perception::ToGray(v.left);
+    f.K = v.intrinsics;
+    f.depth = perception::DepthOf(perception::StereoPointImage(v.left, v.right, v.intrinsics,
+                                                               PerceptionParams{}.stereo));
+    return f;
+  };
+  const Frame fa = view(a), fb = view(b);
+  perception::VisualOdometryState state;
+  perception::Keyframe kf;
+  kf.gray = fa.gray;
+  kf.depth = fa.depth;
+  kf.intrinsics = fa.K;
+  kf.X_GC = perception::Planar(a) * X_RC;
+  state.keyframes.push_back(kf);
+  const perception::VisualOdometryResult r = perception::RegisterView(
+      params_, fb.gray, fb.depth, fb.K, X_RC, Pose2{b.x - 0.01, b.y + 0.01, b.yaw - kDeg}, 0,
+      state);
+  ASSERT_TRUE(r.tracked) << r.why;
+  EXPECT_LT(std::hypot(r.robot_G.x - b.x, r.robot_G.y - b.y), 0.006);
+  EXPECT_LT(std::abs(r.robot_G.yaw - b.yaw), 0.4 * kDeg);
+}
+
+// The estimator over a walk: a keyframe at the start (exact), views every 8 cm with 2 % longer
+// strides than the odometry says; views that no keyframe overlaps become keyframes, and the
+// believed pose stays within a centimetre of the truth where the odometry alone drifts.
+TEST_F(VisualOdometryRender, AWalkSwitchesKeyframesAndKeepsThePose) {
+  const double tilt = 0.4;
+  const Eigen::Isometry3d X_RC = CameraInRobot(tilt);
+  perception::LocalizationParams lp;
+  perception::LocalizationState state;
+  Pose2 truth{0, 0, 0}, believed{0, 0, 0};
+  double odometry_error = 0;
+  for (int i = 0; i <= 12; ++i) {
+    if (i > 0) {
+      truth.x += 0.08 * 1.02;
+      const Pose2 before = believed;
+      believed.x += 0.08;
+      PredictPose(before, believed, Eigen::Vector3d(2.5e-5, 2.5e-5, 1e-5).asDiagonal(), &state);
+      odometry_error += 0.0016;
+    }
+    const Frame f = View(truth, tilt, true);
+    perception::LocalizationView in;
+    in.gray = &f.gray;
+    in.depth = &f.depth;
+    in.intrinsics = f.K;
+    in.X_RC = X_RC;
+    const perception::LocalizationReport r = LocalizeView(lp, params_, in, believed, &state);
+    believed = r.pose_G;
+  }
+  std::printf("keyframes %zu, tracked %d of %d, error %.4f m (odometry alone %.4f m)\n",
+              state.visual.keyframes.size(), state.visual.tracked, state.visual.views,
+              std::hypot(believed.x - truth.x, believed.y - truth.y), odometry_error);
+  EXPECT_GE(state.visual.keyframes.size(), 2u);  // the walk left the first one behind
+  EXPECT_GE(state.visual.tracked, 10);
+  EXPECT_LT(std::hypot(believed.x - truth.x, believed.y - truth.y), 0.006);
+  EXPECT_GT(odometry_error, 0.015);
 }
 
 }  // namespace

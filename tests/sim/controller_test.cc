@@ -192,6 +192,35 @@ TEST_F(ControllerTest, OdometryDriftsFromTheTruthWithSeededNoise) {
   EXPECT_DOUBLE_EQ(c_->TruePose(d_.get()).y, truth.y);
 }
 
+// The systematic part: every stride scaled by the same drawn factor, a heading that creeps
+// by the same drawn angle each footstep; the per-step stream is untouched by it.
+TEST_F(ControllerTest, SystematicOdometryErrorScalesStridesAndCreepsTheHeading) {
+  ControllerParams params;
+  params.odometry_stride_scale = 0.03;
+  params.odometry_yaw_bias = 0.2 * kDeg;
+  params.seed = 7;
+  Load("", params);
+  const double s = c_->stride_scale_error(), b = c_->yaw_bias_error();
+  EXPECT_NE(s, 0.0);
+  EXPECT_LT(std::abs(s), 0.15);  // 5 sigma
+  c_->Walk(0.8, 0, 0);
+  Run();
+  EXPECT_TRUE(c_->settled());
+  const Pose2 truth = c_->TruePose(d_.get());
+  EXPECT_NEAR(c_->believed_pose().x, 0.8, 1e-9);
+  // 10 strides of 8 cm, 20 footsteps of yaw bias
+  EXPECT_NEAR(truth.yaw, 20 * b, 1e-6);
+  const double along = truth.x * std::cos(10 * b) + truth.y * std::sin(10 * b);
+  EXPECT_NEAR(along, 0.8 * (1 + s), 0.004);
+  // without the systematic part the same seed walks exactly
+  ControllerParams exact;
+  exact.seed = 7;
+  Load("", exact);
+  c_->Walk(0.8, 0, 0);
+  Run();
+  EXPECT_NEAR(c_->TruePose(d_.get()).x, 0.8, 1e-6);
+}
+
 // treads as on the course: 3 cm, 6 cm, 3 cm, each a box from the floor up
 const char* kStairs = R"(
     <geom name="tread_1" type="box" pos="0.425 0 0.015" size="0.125 0.5 0.015"/>

@@ -68,7 +68,7 @@ class CourseWorlds(unittest.TestCase):
                 self.assertIn(f"name: {element},", text, name)
             yaw = float(re.search(r"start: \[[-\d.]+, [-\d.]+, ([-\d.]+)\]", text).group(1))
             quadrants.add(int((yaw + 180) // 90))
-            noisy += "odometry_noise: {xy: 0.005, yaw_deg: 0.5}" in text
+            noisy += "odometry_noise: {xy: 0.005, yaw_deg: 0.5, stride_scale: 0.03" in text
             gap_low += "name: gap_low," in text
             self.assertIn("expect: {reach_goal: true, no_collision: true}", text)
         self.assertEqual(quadrants, {0, 1, 2, 3})
