@@ -29,7 +29,7 @@ void BM_LocalizationCorrect(benchmark::State& bench) {
   CorrectPose({}, view, 176 * 144, CameraInRobot(), {}, &map);
   for (int i = int(map.landmarks.size()); i < num_landmarks; ++i) {
     const double angle = 0.3 * i, offset = 5.0 + 0.5 * i;  // beyond every gate
-    map.landmarks.push_back({angle, offset, 0});
+    map.landmarks.push_back({angle, offset, 0, 3 + 2 * Eigen::Index(i)});
   }
   const Eigen::Index n = 3 + 2 * Eigen::Index(map.landmarks.size());
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n) * 1e-4;

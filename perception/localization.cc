@@ -294,6 +294,9 @@ LocalizationReport LocalizeView(const LocalizationParams& params,
     }
     ++state->visual.views;
     if (report.visual_fused) ++state->visual.tracked;
+    ++state->visual.outcomes[report.visual_fused  ? "fused"
+                             : report.visual.tracked ? "gated"
+                                                     : report.visual.why];
   }
   if (view.planes_C != nullptr) {
     report.pose_G = CorrectPose(params, *view.planes_C, view.image_pixels, view.X_RC,

@@ -6,6 +6,7 @@
 #ifndef FOGNAV_PERCEPTION_VISUAL_ODOMETRY_H_
 #define FOGNAV_PERCEPTION_VISUAL_ODOMETRY_H_
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -57,6 +58,8 @@ struct VisualOdometryState {
   std::vector<Keyframe> keyframes;
   int views = 0;    // views registered or tried (LocalizeView counts them)
   int tracked = 0;  // views whose registration was fused
+  // views by outcome: "fused", "gated" (beyond the odometry's uncertainty) or why it failed
+  std::map<std::string, int> outcomes;
 };
 
 // What one view's registration gave.

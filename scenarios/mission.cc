@@ -192,6 +192,7 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
       {"drift_per_m", drift},
       {"visual_views", vo.views},
       {"visual_tracked", vo.views == 0 ? 0.0 : double(vo.tracked) / double(vo.views)},
+      {"visual_outcomes", vo.outcomes},
       {"keyframes", vo.keyframes.size()}};
   timing_ms["localization"] = perception::Median(samples("localization"));
   auto null_if_empty = [](const std::string& s) {

@@ -313,6 +313,42 @@ std::string LastDecisionsTable(const std::vector<CsvRow>& cycles, size_t count) 
 
 }  // namespace
 
+// The believed pose's position error at the settled footsteps (trajectory.csv's settled rows)
+// as inline SVG over the steps, with its largest value; a note where the run logged none.
+std::string PoseErrorSvg(const std::vector<CsvRow>& trajectory) {
+  std::vector<std::pair<double, double>> points;  // step, error in metres
+  double top = 0.01;
+  for (const CsvRow& r : trajectory) {
+    if (Number(r, "settled") != 1) continue;
+    const double step = Number(r, "step");
+    const double e = std::hypot(Number(r, "odom_x") - Number(r, "true_x"),
+                                Number(r, "odom_y") - Number(r, "true_y"));
+    if (!(step >= 1) || !std::isfinite(e)) continue;
+    points.emplace_back(step, e);
+    top = std::max(top, e);
+  }
+  if (points.empty()) return "<p class=\"note\">No settled footsteps were logged.</p>\n";
+  top = std::ceil(top * 100) / 100;  // whole centimetres
+  const double left = 54, width = 860, height = 120, last = points.back().first;
+  auto x_of = [&](double step) { return left + width * step / std::max(last, 1.0); };
+  auto y_of = [&](double e) { return 10 + height * (1 - e / top); };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"pose_error\" width=\"" << left + width + 30
+      << "\" height=\"" << height + 40 << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
+  for (int cm = 0; cm <= int(std::lround(top * 100)); cm += std::max(1, int(top * 100) / 4)) {
+    svg << "<line x1=\"" << left << "\" x2=\"" << left + width << "\" y1=\"" << y_of(cm / 100.0)
+        << "\" y2=\"" << y_of(cm / 100.0) << "\" stroke=\"#e4e4e4\"/><text x=\"" << left - 6
+        << "\" y=\"" << y_of(cm / 100.0) + 4 << "\" text-anchor=\"end\">" << cm << "</text>\n";
+  }
+  svg << "<text x=\"4\" y=\"20\">cm</text><text x=\"" << left + width << "\" y=\""
+      << height + 34 << "\" text-anchor=\"end\">footstep " << Format("%.0f", last) << "</text>\n";
+  svg << "<polyline fill=\"none\" stroke=\"#e45756\" stroke-width=\"1.5\" points=\"";
+  for (const auto& [step, e] : points) svg << x_of(step) << "," << y_of(e) << " ";
+  svg << "\"/>\n<rect x=\"" << left << "\" y=\"10\" width=\"" << width << "\" height=\"" << height
+      << "\" fill=\"none\" stroke=\"#888\"/>\n</svg>\n";
+  return svg.str();
+}
+
 void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_truth,
                       const navigation::PlanResult& optimal, const perception::Pose2& start_W,
                       const Eigen::Vector2d& goal_W, const std::string& video_path) {
@@ -372,6 +408,13 @@ void WriteMissionPage(const std::string& out_dir, const perception::Fog& floor_t
 
   html +=
       "<h2>Timeline</h2>\n" + TimelineSvg(cycles, trajectory, start_W, goal_W, failure, last_cycle);
+  html +=
+      "<h2>Where the robot believed it was</h2>\n<p class=\"note\">The believed position's "
+      "distance from the true one at each footstep that ended a stride (trajectory.csv's settled "
+      "rows; localization: " +
+      EscapeMarkup(report.contains("localization") ? report["localization"].value("mode", "")
+                                                   : std::string()) +
+      ").</p>\n" + PoseErrorSvg(trajectory);
 
   if (!failure.empty()) {
     html += "<h2>The failure: " + EscapeMarkup(failure) +

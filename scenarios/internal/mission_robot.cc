@@ -215,6 +215,7 @@ MissionRobot::MissionRobot(const Scenario& scenario, const RunParams& params,
   step_covariance_ = Eigen::Vector3d(xy * xy, xy * xy, yaw * yaw).asDiagonal();
   for (const auto& name : ActionNames()) actions_[name] = 0;
   last_true_ = TruePose();
+  predicted_from_ = believed();
   NoteWalked(believed());
 }
 
@@ -355,16 +356,37 @@ void MissionRobot::OnTick() {
 
 void MissionRobot::RunController() {
   const auto start = Clock::now();
-  const Pose2 before = believed();
-  const int steps_before = controller_.steps();
-  controller_.RunUntilIdle(world_.model(), world_.data(), [&](int) { OnTick(); });
-  perception::PredictPose(before, believed(),
-                          IncrementCovariance(before, believed(), controller_.steps() - steps_before),
+  const int every = perception_.view_every_steps;
+  int last_view_steps = controller_.steps();
+  double perceive_ms = 0;
+  controller_.RunUntilIdle(world_.model(), world_.data(), [&](int) {
+    OnTick();
+    // views while walking, where a stride has just ended (the believed pose holds then)
+    if (every > 0 && controller_.settled() && controller_.steps() - last_view_steps >= every &&
+        !controller_.Idle()) {
+      last_view_steps = controller_.steps();
+      const auto perceive_start = Clock::now();
+      Perceive();
+      perceive_ms += Ms(perceive_start);
+    }
+  });
+  Predict();
+  timing_["control"].push_back(Ms(start) - perceive_ms);
+}
+
+// Propagates the filter over the footsteps since the last prediction; in mode truth the belief
+// is the truth.
+void MissionRobot::Predict() {
+  const Pose2 now = believed();
+  perception::PredictPose(predicted_from_, now,
+                          IncrementCovariance(predicted_from_, now,
+                                              controller_.steps() - predicted_steps_),
                           &localization_);
   if (perception_.localization.mode == perception::LocalizationMode::kTruth) {
     controller_.CorrectBelievedPose(TruePose());
   }
-  timing_["control"].push_back(Ms(start));
+  predicted_from_ = believed();
+  predicted_steps_ = controller_.steps();
 }
 
 // The odometry's covariance over `steps` footsteps from `before` to `after`, in the robot frame
@@ -383,6 +405,7 @@ Eigen::Matrix3d MissionRobot::IncrementCovariance(const Pose2& before, const Pos
 
 // one perception cycle at the head's current pose
 void MissionRobot::Perceive() {
+  Predict();
   const auto start = Clock::now();
   const mjData* d = world_.data();
   last_stereo_ = RenderStereo(&renderer_, world_,
@@ -399,6 +422,7 @@ void MissionRobot::Perceive() {
   timing_["mapping"].push_back(last_view_.mapping_ms);
   timing_["localization"].push_back(last_view_.localization_ms);
   controller_.CorrectBelievedPose(last_view_.robot_G);
+  predicted_from_ = believed();
 }
 
 // turns the head to `view` and perceives

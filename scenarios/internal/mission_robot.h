@@ -111,6 +111,7 @@ class MissionRobot {
   void OnTick();
   void NoteWalked(const perception::Pose2& at);  // Fog::walked: the standing footprint at `at`
   void RunController();
+  void Predict();
   Eigen::Matrix3d IncrementCovariance(const perception::Pose2& before,
                                       const perception::Pose2& after, int steps) const;
   void Perceive();
@@ -144,6 +145,8 @@ class MissionRobot {
 
   perception::MapState maps_;
   perception::LocalizationState localization_;
+  perception::Pose2 predicted_from_;  // the believed pose the filter last predicted to
+  int predicted_steps_ = 0;           // the footsteps then
   Eigen::Matrix3d step_covariance_;  // the odometry's noise: the covariance one footstep adds
   double believed_floor_z_ = 0;      // odometry: the sum of the commanded rises
   std::vector<StepEdge> edges_;      // of the next steps up or down on the plan, measured

@@ -1,5 +1,6 @@
 #include "viz/pages.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -103,6 +104,32 @@ TEST(MissionPage, SkipsRowsFognavDidNotWrite) {
   const std::string html = Read(dir / "report.html");
   EXPECT_NE(html.find("<title>cycle 3: give_up</title>"), std::string::npos);
   EXPECT_EQ(html.find("<title>cycle 0"), std::string::npos);
+}
+
+// The believed pose's error is plotted over the settled rows only: here 2 and 4 cm.
+TEST(MissionPage, PlotsThePoseErrorAtSettledFootsteps) {
+  const fs::path dir = FailedMissionFolder();
+  WriteMissionPage(dir.string(), navigation::internal::FlatFog(75, 50, 0.04), {}, {0.5, 1.0, 0.0},
+                   {2.6, 1.0}, "");
+  EXPECT_NE(Read(dir / "report.html").find("No settled footsteps were logged."), std::string::npos);
+  std::ofstream(dir / "trajectory.csv")
+      << "step,tick,true_x,true_y,true_yaw,odom_x,odom_y,odom_yaw,action,settled\n"
+      << "1,10,0.70000,1.00000,0.00000,0.60000,1.00000,0.00000,walk,0\n"
+      << "2,20,0.90000,1.00000,0.00000,0.90000,0.98000,0.00000,walk,1\n"
+      << "4,40,1.10000,1.00000,0.00000,1.10000,0.96000,0.00000,walk,1\n";
+  WriteMissionPage(dir.string(), navigation::internal::FlatFog(75, 50, 0.04), {}, {0.5, 1.0, 0.0},
+                   {2.6, 1.0}, "");
+  const std::string html = Read(dir / "report.html");
+  const size_t svg = html.find("<svg xmlns=\"http://www.w3.org/2000/svg\" id=\"pose_error\"");
+  ASSERT_NE(svg, std::string::npos);
+  // two points (the unsettled 10 cm row left out), the axis up to 4 cm, the last footstep 4
+  const std::string plot = html.substr(svg, html.find("</svg>", svg) - svg);
+  const size_t line = plot.find("points=\"");
+  ASSERT_NE(line, std::string::npos);
+  const std::string coordinates = plot.substr(line + 8, plot.find('"', line + 8) - line - 8);
+  EXPECT_EQ(std::count(coordinates.begin(), coordinates.end(), ','), 2) << coordinates;
+  EXPECT_NE(plot.find(">4</text>"), std::string::npos);
+  EXPECT_NE(plot.find("footstep 4"), std::string::npos);
 }
 
 TEST(MissionPage, AMissingReportIsAnErrorNamingTheFile) {
