@@ -13,6 +13,7 @@
 
 #include "navigation/planner.h"
 #include "scenarios/behaviour.h"
+#include "scenarios/internal/mission_loop.h"
 #include "scenarios/internal/mission_robot.h"
 #include "scenarios/output.h"
 #include "scenarios/params.h"
@@ -46,8 +47,10 @@ std::string CycleRow(int cycle, int step, const perception::Pose2& believed, nav
   return row;
 }
 
-// Whether the mission ends before cycle `cycle` + 1: with the goal reached (no failure), or with
-// the failure and what caused it.
+}  // namespace
+
+namespace internal {
+
 bool MissionEnds(const Scenario& scenario, const MissionOptions& options,
                  const MissionRobot& robot, int cycle, std::string* failure,
                  std::string* detail) {
@@ -67,6 +70,10 @@ bool MissionEnds(const Scenario& scenario, const MissionOptions& options,
   }
   return !failure->empty();
 }
+
+}  // namespace internal
+
+namespace {
 
 // Whether the mission met the scenario's expectations.
 bool MetExpectations(const Expectations& expect, const MissionRobot& robot, bool reached_goal,
@@ -98,16 +105,10 @@ perception::Fog WorldFog(const Scenario& scenario, const PerceptionParams& param
   return TruthFog(scenario, whole, params.map.fog);
 }
 
-// How a mission ended, for its report.
-struct MissionEnd {
-  std::string failure, failure_detail;
-  int cycles = 0;
-  nav::PlanResult plan;  // the last cycle's
-  Clock::time_point wall_start;
-};
+}  // namespace
 
-// Scores the end state against the ground truth, writes the pictures, report.json and
-// report.html.
+namespace internal {
+
 MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
                       const RunParams& run_params, const nav::PlannerParams& planner,
                       MissionRobot& robot, const MissionEnd& end) {
@@ -206,7 +207,11 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
   return outcome;
 }
 
-}  // namespace
+}  // namespace internal
+
+using internal::MissionEnd;
+using internal::MissionEnds;
+using internal::Report;
 
 // The loop: sense (the robot's views update its maps), decide (Behaviour), act (the robot
 // executes the decision), log; until the mission ends (MissionEnds).

@@ -64,6 +64,8 @@ class MissionRobot {
   void FadeGrid(double keep);
 
   void LookAround();
+  // turns the head to `view` and perceives
+  void Look(const sim::HeadAngles& view);
   // a look at the floor at `target`, floor_z high, the head panned toward it as far as it turns
   void LookAtFloor(const Eigen::Vector2d& target, double floor_z);
   // Executes `run` of `plan` (believed pose `from`, `fog` the plan's map); returns the index of
@@ -105,7 +107,6 @@ class MissionRobot {
   void NoteWalked(const perception::Pose2& at);  // Fog::walked: the standing footprint at `at`
   void RunController();
   void Perceive();
-  void Look(const sim::HeadAngles& view);
   sim::HeadAngles HeadAtElevation(double pan, double wanted_elevation) const;
   void LookUpBeforeCrawling(const navigation::PlanResult& plan, size_t first);
   void AddVideoFrame();
