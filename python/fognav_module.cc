@@ -337,6 +337,10 @@ class Mission {
     out["ended"] = r.ended;
     return out;
   }
+  bool Step() {
+    py::gil_scoped_release release;
+    return session_->Step();
+  }
   py::tuple BelievedPose() const { return PoseTuple(session_->BelievedPose()); }
   py::tuple TruePose() const { return PoseTuple(session_->TruePose()); }
   bool Done() { return session_->Done(); }
@@ -430,6 +434,10 @@ poses: cell centres and HEADINGS) and moves (N names from MOVES; postures and fl
 as plan() returns. Moves are checked by the planner's body rules on fog(); execution stops
 before the first that breaks them. Returns blocked_at (that index, or None), reached (the last
 pose executed to), steps, collisions (new contacts) and ended.)")
+      .def("step", &Mission::Step,
+           R"(One cycle with the built-in decisions, as `fognav run` runs it (the first call
+looks around first). Returns False once the mission has ended; stepping until then gives the
+report of run().)")
       .def("believed_pose", &Mission::BelievedPose, "(x, y, yaw) in the grid frame")
       .def("true_pose", &Mission::TruePose, "(x, y, yaw) in the world frame")
       .def("done", &Mission::Done,

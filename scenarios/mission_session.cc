@@ -109,11 +109,27 @@ nav::Posture MissionSession::posture() const { return robot_->posture(); }
 int MissionSession::cycles() const { return end_->cycles; }
 
 bool MissionSession::Done() {
-  if (outcome_) return true;
-  end_->failure.clear();
-  end_->failure_detail.clear();
-  return internal::MissionEnds(scenario_, options_, *robot_, end_->cycles, &end_->failure,
-                               &end_->failure_detail);
+  if (!ended_) {
+    ended_ = internal::MissionEnds(scenario_, options_, *robot_, end_->cycles, &end_->failure,
+                                   &end_->failure_detail);
+  }
+  return ended_;
+}
+
+bool MissionSession::Step() {
+  if (outcome_) return false;
+  if (!behaviour_) {
+    robot_->LookAround();
+    behaviour_ = std::make_unique<Behaviour>(MissionGoal{scenario_.goal, scenario_.goal_tolerance},
+                                             planner_, params_.mission, robot_->believed());
+  }
+  if (Done()) return false;
+  if (internal::RunCycle(options_, params_, *robot_, *behaviour_, end_.get()) ==
+      internal::CycleEnd::kGaveUp) {
+    ended_ = true;
+    return false;
+  }
+  return true;
 }
 
 const MissionOutcome& MissionSession::Report() {

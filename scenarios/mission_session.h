@@ -20,6 +20,7 @@
 
 namespace fognav::scenarios {
 
+class Behaviour;
 namespace internal {
 class MissionRobot;
 struct MissionEnd;
@@ -64,6 +65,11 @@ class MissionSession {
   // run by run (SegmentPath), stopping if the mission ends. One call is one cycle.
   SessionExecution Execute(const std::vector<navigation::PathPose>& path);
 
+  // One cycle with the built-in behaviour, as RunMission runs it: the first call looks around
+  // (the start of RunMission), every call first checks whether the mission has ended. Returns
+  // false once it has (Done); stepping until then gives RunMission's mission and report.
+  bool Step();
+
   perception::Pose2 BelievedPose() const;  // grid frame (odometry corrected by localization)
   perception::Pose2 TruePose() const;      // world frame
   double BelievedFloorZ() const;           // the floor under the robot, grid frame, metres
@@ -89,6 +95,8 @@ class MissionSession {
   MissionOptions options_;
   std::unique_ptr<internal::MissionRobot> robot_;
   std::unique_ptr<internal::MissionEnd> end_;
+  std::unique_ptr<Behaviour> behaviour_;  // made by the first Step
+  bool ended_ = false;                    // Done() has been true: end_ holds the failure
   std::optional<MissionOutcome> outcome_;
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "navigation/planner.h"
+#include "scenarios/behaviour.h"
 #include "scenarios/internal/mission_robot.h"
 #include "scenarios/mission.h"
 #include "scenarios/params.h"
@@ -32,6 +33,15 @@ bool MissionEnds(const Scenario& scenario, const MissionOptions& options, const 
 MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
                       const RunParams& run_params, const navigation::PlannerParams& planner,
                       MissionRobot& robot, const MissionEnd& end);
+
+// What one cycle did: moved (a decision to follow), only looked (or nothing), or gave up (the
+// mission ends in no_path).
+enum class CycleEnd { kMoved, kLooked, kGaveUp };
+
+// One cycle of the loop with the built-in behaviour: plan and decide on the FOG, log the
+// cycles.csv row, then look around, or execute the decision's moves and look after them.
+CycleEnd RunCycle(const MissionOptions& options, const RunParams& run_params,
+                  MissionRobot& robot, Behaviour& behaviour, MissionEnd* end);
 
 }  // namespace fognav::scenarios::internal
 

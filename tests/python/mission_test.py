@@ -45,6 +45,22 @@ def test_run_gives_the_binarys_report(tmp_path, scenario, params, seed):
     assert report["params"] == params
 
 
+def test_stepping_with_the_built_in_decisions_gives_runs_report(tmp_path):
+    report = fognav.run(NOISY, seed=3)
+    m = fognav.Mission(NOISY, seed=3, out=str(tmp_path))
+    cycles = 0
+    while m.step():
+        cycles += 1
+        assert m.cycles == cycles
+    assert m.done()
+    stepped = m.report()
+    assert comparable(stepped) == comparable(report)
+    assert stepped["cycles"] == cycles
+    with open(tmp_path / "cycles.csv") as f:
+        assert len(f.readlines()) == 1 + cycles
+    assert not m.step()
+
+
 def test_load_scenario_raises_the_validate_message(tmp_path):
     bad = tmp_path / "bad.yaml"
     bad.write_text("name: bad\nrobot: {start: [0, 0, 0]}\ngoal: {position: [1, 0]}\n"
