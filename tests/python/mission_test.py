@@ -165,6 +165,18 @@ def test_execute_stops_at_the_first_move_the_body_rules_refuse():
         m.look(0, 0.5)
 
 
+def test_executing_the_built_in_plan_follows_it():
+    m = fognav.Mission(NARROW_GAP)
+    m.look_around()
+    plan = m.plan()
+    r = m.execute(plan)
+    assert r["blocked_at"] is None and r["reached"] == len(plan["moves"]) - 1
+    assert r["steps"] > 0 and r["collisions"] == 0
+    end = plan["poses"][-1]
+    assert np.allclose(m.believed_pose(), end, atol=0.01)
+    assert math.dist(m.true_pose()[:2], end[:2]) < 0.02
+
+
 # ---- a planner written in Python: A* over cells and the four axis headings ----
 
 HEADING_STEP = [(1, 0), (0, 1), (-1, 0), (0, -1)]  # ahead, per quarter turn; left is the next
