@@ -384,3 +384,16 @@ def test_a_python_planner_drives_the_robot_through_a_gap_with_turns_and_sidestep
     assert in_gap and all(abs(float(r[3])) < 0.13 for r in in_gap)
     assert all(abs(abs(float(r[4])) - math.pi / 2) < 0.2 for r in in_gap)
     assert m.cycles <= scenario.max_cycles
+
+
+def test_a_mission_releases_the_gil_while_it_runs():
+    import threading
+    reports = []
+    worker = threading.Thread(target=lambda: reports.append(fognav.run(NARROW_GAP)))
+    worker.start()
+    count = 0
+    while worker.is_alive():  # with the GIL held by the mission this loop would not run
+        count += 1
+    worker.join()
+    assert reports and reports[0]["success"]
+    assert count > 10000
