@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 #include <stdlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
