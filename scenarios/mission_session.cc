@@ -109,6 +109,7 @@ nav::Posture MissionSession::posture() const { return robot_->posture(); }
 int MissionSession::cycles() const { return end_->cycles; }
 
 bool MissionSession::Done() {
+  if (outcome_) return true;
   if (!ended_) {
     ended_ = internal::MissionEnds(scenario_, options_, *robot_, end_->cycles, &end_->failure,
                                    &end_->failure_detail);
