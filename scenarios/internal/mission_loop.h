@@ -40,8 +40,8 @@ enum class CycleEnd { kMoved, kLooked, kGaveUp };
 
 // One cycle of the loop with the built-in behaviour: plan and decide on the FOG, log the
 // cycles.csv row, then look around, or execute the decision's moves and look after them.
-CycleEnd RunCycle(const MissionOptions& options, const RunParams& run_params,
-                  MissionRobot& robot, Behaviour& behaviour, MissionEnd* end);
+CycleEnd RunCycle(const MissionOptions& options, const RunParams& run_params, MissionRobot& robot,
+                  Behaviour& behaviour, MissionEnd* end);
 
 }  // namespace fognav::scenarios::internal
 
