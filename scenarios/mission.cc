@@ -13,6 +13,7 @@
 
 #include "navigation/planner.h"
 #include "scenarios/behaviour.h"
+#include "scenarios/internal/mission_loop.h"
 #include "scenarios/internal/mission_robot.h"
 #include "scenarios/output.h"
 #include "scenarios/params.h"
@@ -46,8 +47,10 @@ std::string CycleRow(int cycle, int step, const perception::Pose2& believed, nav
   return row;
 }
 
-// Whether the mission ends before cycle `cycle` + 1: with the goal reached (no failure), or with
-// the failure and what caused it.
+}  // namespace
+
+namespace internal {
+
 bool MissionEnds(const Scenario& scenario, const MissionOptions& options,
                  const MissionRobot& robot, int cycle, std::string* failure,
                  std::string* detail) {
@@ -67,6 +70,10 @@ bool MissionEnds(const Scenario& scenario, const MissionOptions& options,
   }
   return !failure->empty();
 }
+
+}  // namespace internal
+
+namespace {
 
 // Whether the mission met the scenario's expectations.
 bool MetExpectations(const Expectations& expect, const MissionRobot& robot, bool reached_goal,
@@ -98,16 +105,10 @@ perception::Fog WorldFog(const Scenario& scenario, const PerceptionParams& param
   return TruthFog(scenario, whole, params.map.fog);
 }
 
-// How a mission ended, for its report.
-struct MissionEnd {
-  std::string failure, failure_detail;
-  int cycles = 0;
-  nav::PlanResult plan;  // the last cycle's
-  Clock::time_point wall_start;
-};
+}  // namespace
 
-// Scores the end state against the ground truth, writes the pictures, report.json and
-// report.html.
+namespace internal {
+
 MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
                       const RunParams& run_params, const nav::PlannerParams& planner,
                       MissionRobot& robot, const MissionEnd& end) {
@@ -236,10 +237,54 @@ MissionOutcome Report(const Scenario& scenario, const MissionOptions& options,
   return outcome;
 }
 
-}  // namespace
+CycleEnd RunCycle(const MissionOptions& options, const RunParams& run_params,
+                  MissionRobot& robot, Behaviour& behaviour, MissionEnd* end) {
+  robot.set_cycle(++end->cycles);
+  const perception::Pose2 believed = robot.believed();
+  const perception::Fog fog = robot.PlanningFog();
+  const nav::Posture posture = robot.posture();
+  const Decision decision = behaviour.Decide(fog, robot.maps(), believed, posture);
+  robot.NoteTiming("planning", decision.plan_ms);
+  end->plan = decision.plan;
+  robot.ShowPlan(fog, end->plan);
+  robot.LogCycle(
+      CycleRow(end->cycles, robot.steps(), believed, posture, decision, behaviour.state()));
+  if (decision.action == Action::kGiveUp) {
+    end->failure = "no_path";
+    end->failure_detail = decision.failure_detail;
+    return CycleEnd::kGaveUp;
+  }
+  if (decision.action == Action::kFreshLook) robot.FadeGrid(run_params.mission.fresh_look_keep);
+  if (decision.action == Action::kFreshLook || decision.action == Action::kLookAround) {
+    robot.LookAround();
+    if (decision.peek_at) robot.LookAtFloor(*decision.peek_at, robot.believed_floor_z());
+  }
+  if (decision.action != Action::kFollow) return CycleEnd::kLooked;
+
+  const size_t reached = robot.Execute(end->plan, decision.run, fog);
+  behaviour.Moved(end->plan, reached);
+  if (const auto looked = robot.LookAfterMove(end->plan, decision.run, reached, fog,
+                                              behaviour.state().looked_at)) {
+    behaviour.LookedAround(*looked);
+  }
+  if (options.dump_every > 0 && end->cycles % options.dump_every == 0) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "cycle%04d", end->cycles);
+    robot.WriteCycleFrames(name, fog, believed, end->plan);
+  }
+  return CycleEnd::kMoved;
+}
+
+}  // namespace internal
+
+using internal::CycleEnd;
+using internal::MissionEnd;
+using internal::MissionEnds;
+using internal::Report;
+using internal::RunCycle;
 
 // The loop: sense (the robot's views update its maps), decide (Behaviour), act (the robot
-// executes the decision), log; until the mission ends (MissionEnds).
+// executes the decision), log (RunCycle); until the mission ends (MissionEnds).
 MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& options) {
   MissionEnd end;
   end.wall_start = Clock::now();
@@ -258,40 +303,9 @@ MissionOutcome RunMission(const Scenario& scenario, const MissionOptions& option
   Behaviour behaviour({scenario.goal, scenario.goal_tolerance}, planner, run_params.mission,
                       robot.believed());
   while (!MissionEnds(scenario, options, robot, end.cycles, &end.failure, &end.failure_detail)) {
-    robot.set_cycle(++end.cycles);
-    const perception::Pose2 believed = robot.believed();
-    const perception::Fog fog = robot.PlanningFog();
-    const nav::Posture posture = robot.posture();
-    const Decision decision = behaviour.Decide(fog, robot.maps(), believed, posture);
-    robot.NoteTiming("planning", decision.plan_ms);
-    end.plan = decision.plan;
-    robot.ShowPlan(fog, end.plan);
-    robot.LogCycle(
-        CycleRow(end.cycles, robot.steps(), believed, posture, decision, behaviour.state()));
-    if (decision.action == Action::kGiveUp) {
-      end.failure = "no_path";
-      end.failure_detail = decision.failure_detail;
-      break;
-    }
-    if (decision.action == Action::kFreshLook) robot.FadeGrid(run_params.mission.fresh_look_keep);
-    if (decision.action == Action::kFreshLook || decision.action == Action::kLookAround) {
-      robot.LookAround();
-      if (decision.peek_at) robot.LookAtFloor(*decision.peek_at, robot.believed_floor_z());
-    }
-    if (decision.action != Action::kFollow) continue;
-
-    const size_t reached = robot.Execute(end.plan, decision.run, fog);
-    behaviour.Moved(end.plan, reached);
-    if (const auto looked = robot.LookAfterMove(end.plan, decision.run, reached, fog,
-                                                behaviour.state().looked_at)) {
-      behaviour.LookedAround(*looked);
-    }
-    if (options.dump_every > 0 && end.cycles % options.dump_every == 0) {
-      char name[32];
-      std::snprintf(name, sizeof(name), "cycle%04d", end.cycles);
-      robot.WriteCycleFrames(name, fog, believed, end.plan);
-    }
-    if (progress) {
+    const CycleEnd cycle = RunCycle(options, run_params, robot, behaviour, &end);
+    if (cycle == CycleEnd::kGaveUp) break;
+    if (progress && cycle == CycleEnd::kMoved) {
       std::fprintf(stderr, "\rcycle %4d  goal %5.2f m  %-11s  %6.1f s", end.cycles,
                    robot.TrueGoalDistance(), robot.move().c_str(),
                    Ms(end.wall_start) / 1000);

@@ -721,4 +721,19 @@ void PrintParamTable(std::ostream& out) {
   }
 }
 
+void ApplyParam(const std::string& name, const std::string& value_text, const std::string& source,
+                ParamOverrides* overrides) {
+  const ParamInfo* info = FindParam(name);
+  if (info == nullptr) {
+    std::string sections;
+    for (const std::string& s : ParamSections()) sections += (sections.empty() ? "" : ", ") + s;
+    throw InputError(source + ": " + name + ": unknown parameter (sections: " + sections +
+                     "; `fognav params` lists them all)");
+  }
+  double value = 0;
+  const std::string wrong = ParseParamValue(*info, value_text, &value);
+  if (!wrong.empty()) throw InputError(source + ": " + name + ": " + wrong);
+  (*overrides)[name] = value;
+}
+
 }  // namespace fognav::scenarios

@@ -130,6 +130,11 @@ std::string ParseParamValue(const ParamInfo& info, const std::string& text, doub
 // wrong.
 void ApplySetFlag(const std::string& assignment, ParamOverrides* overrides);
 
+// Applies one parameter given by name and value text, as from the Python module's `params`
+// dict. Throws InputError "SOURCE: NAME: what is wrong", as ApplySetFlag does.
+void ApplyParam(const std::string& name, const std::string& value_text, const std::string& source,
+                ParamOverrides* overrides);
+
 // The defaults with `overrides` applied.
 RunParams ResolveParams(const ParamOverrides& overrides);
 

@@ -157,6 +157,7 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   }
   const Eigen::Isometry3d X_GR = perception::Planar(result.robot_G, floor_z);
   const Eigen::Isometry3d X_GC = X_GR * X_RC;
+  result.X_GC = X_GC;
   std::vector<perception::OrientedBox> body_G;
   for (const sim::RobotBox& box : body_R) body_G.push_back({X_GR * box.X_RB, box.half_size});
 

@@ -28,6 +28,7 @@ struct ViewResult {
   perception::SegmentationScore segmentation;
   perception::StereoScore stereo;  // range data against the renderer's depth
   perception::Pose2 robot_G;       // the pose the maps were updated with (localized if asked)
+  Eigen::Isometry3d X_GC = Eigen::Isometry3d::Identity();  // the left camera it implies, grid frame
   // the labelled points the maps were updated with (grid frame, robot's own body dropped)
   std::vector<perception::LabelledPoint> labelled_G;
   perception::LocalizationReport localization;  // what localizing the view did

@@ -6,7 +6,8 @@ cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make libmujoco-dev libosmesa6-dev libeigen3-dev libopencv-dev
           libopencv-contrib-dev libgtest-dev libbenchmark-dev libyaml-cpp-dev
-          nlohmann-json3-dev libcli11-dev python3)
+          nlohmann-json3-dev libcli11-dev python3
+          pybind11-dev python3-dev python3-numpy python3-pytest)  # the Python module, its tests
 # the fuzzers' build (scripts/fuzz.sh) needs clang and its libFuzzer
 if [[ " $* " == *" -DFOGNAV_FUZZ=ON "* ]]; then packages+=(clang-14 libclang-rt-14-dev); fi
 missing=()

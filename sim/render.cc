@@ -87,6 +87,11 @@ struct Renderer::Impl {
   std::vector<float> depth_flipped;
 
   ~Impl() {
+    // MuJoCo frees its GL objects in the current context: make it this one, not another
+    // renderer's (whose objects would go instead)
+    if (osmesa && context_made) {
+      LoadOSMesa().make_current(osmesa, osmesa_buffer.data(), GL_UNSIGNED_BYTE, 64, 64);
+    }
     if (context_made) mjr_freeContext(&context);
     if (scene_made) mjv_freeScene(&scene);
     if (osmesa) LoadOSMesa().destroy(osmesa);

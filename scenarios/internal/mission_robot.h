@@ -64,6 +64,8 @@ class MissionRobot {
   void FadeGrid(double keep);
 
   void LookAround();
+  // turns the head to `view` and perceives
+  void Look(const sim::HeadAngles& view);
   // a look at the floor at `target`, floor_z high, the head panned toward it as far as it turns
   void LookAtFloor(const Eigen::Vector2d& target, double floor_z);
   // Executes `run` of `plan` (believed pose `from`, `fog` the plan's map); returns the index of
@@ -115,7 +117,6 @@ class MissionRobot {
   Eigen::Matrix3d IncrementCovariance(const perception::Pose2& before,
                                       const perception::Pose2& after, int steps) const;
   void Perceive();
-  void Look(const sim::HeadAngles& view);
   sim::HeadAngles HeadAtElevation(double pan, double wanted_elevation) const;
   void LookUpBeforeCrawling(const navigation::PlanResult& plan, size_t first);
   void AddVideoFrame();

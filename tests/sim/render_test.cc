@@ -245,5 +245,22 @@ TEST(Render, PixelSamplesAverageTheirPixelsArea) {
   }
   EXPECT_GT(sky, 0);
 }
+
+// Two renderers in one process (the Python module's missions): destroying one leaves the
+// other's textures and buffers alone, so it renders the same view as before.
+TEST(Render, DestroyingARendererLeavesAnotherIntact) {
+  const World world(WallAtOneMetre());
+  auto camera = PinholeCamera::FromFov(LookAlongX(0.5), 176, 144, M_PI / 4);
+  Renderer kept(world.model());
+  RenderedView before;
+  {
+    Renderer other(world.model());
+    other.Render(world.model(), world.data(), camera);
+    before = kept.Render(world.model(), world.data(), camera);  // the current context: kept's
+  }
+  const RenderedView after = kept.Render(world.model(), world.data(), camera);
+  EXPECT_EQ(after.rgb, before.rgb);
+  EXPECT_EQ(after.surface_id, before.surface_id);
+}
 }  // namespace
 }  // namespace fognav::sim
