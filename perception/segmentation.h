@@ -15,68 +15,44 @@ namespace fognav::perception {
 // ---- range data ----
 
 // OpenCV StereoSGBM settings for the 176x144, 45° hfov, 5 cm baseline head camera on textured
-// renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m).
+// renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m). How the
+// values were found: docs/params.md, "Stereo".
 struct StereoParams {
-  int min_disparity = 0;          // pixels
-  int num_disparities = 128;      // search range in pixels, a multiple of 16 (nearest 0.083 m
-                                  // on the 176-pixel, 45-degree, 5 cm sensor; a surface nearer
-                                  // than that matches garbage, which left_right_check does not
-                                  // always remove: 64 (0.17 m) put phantom obstacles under a
-                                  // table whose edge the standing robot's eyes came within
-                                  // 0.13 m of)
+  int min_disparity = 0;          // smallest disparity searched, pixels
+  int num_disparities = 128;      // whole search range, pixels, a multiple of 16 (nearest 0.083 m)
   int block_size = 5;             // matching block side in pixels, odd
-  int p1 = 0;                     // SGM small-change penalty; 0 = 8 * 3 * block_size^2
-  int p2 = 0;                     // SGM large-change penalty; 0 = 32 * 3 * block_size^2
+  int p1 = 0;                     // SGM small-change penalty; 0 = 8 * channels * block_size^2
+  int p2 = 0;                     // SGM large-change penalty; 0 = 32 * channels * block_size^2
   int disp12_max_diff = 1;        // OpenCV's own left-right test in pixels; < 0 disables
   int pre_filter_cap = 31;        // clip of the x-derivative prefilter
   int uniqueness_ratio = 20;      // percent margin of the best over the second-best cost
   int speckle_window_size = 40;   // largest speckle in pixels removed; 0 disables
   int speckle_range = 2;          // disparity variation (pixels) within one connected speckle
   bool full_dp = false;           // OpenCV MODE_HH (full 8-path) instead of MODE_SGBM
-  bool pad_left = true;           // pad both images on the left by num_disparities columns so
-                                  // that the left border columns also get disparities
+  bool three_way = false;         // OpenCV MODE_SGBM_3WAY instead of MODE_SGBM (unless full_dp)
+  bool grey = false;              // match grey levels, not colours
+  int range_margin = 4;           // search what a half-resolution matching finds +- this, pixels;
+                                  // < 0 = always the whole range
+  int range_min_pixels = 8;       // disparities fewer half-resolution pixels have are left out
+  bool pad_left = true;           // pad both images on the left so border columns get disparities
   double max_depth = 10.0;        // metres; farther points (disparity below f B / max_depth) NaN
-  int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on
-                                  // the grey images (0 = SGBM's own interpolation, which locks
-                                  // towards whole pixels and makes surfaces look terraced)
+  int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on the
+                                  // grey images (0 = SGBM's own interpolation)
   int refine_window = 5;          // side in pixels of the refinement window, odd
-  // A left-right check of the refined disparity: the match is refined a second time from the
-  // right image's window (around u - d, matched in the left image), and the pixel's point is
-  // kept only if the two agree within this many pixels; 0 = no check. Where the two windows see
-  // the same surface the two refinements agree to hundredths of a pixel. They part where the
-  // windows differ: texture finer than a pixel that aliases differently in each eye, and
-  // windows across a depth edge (the left one holds another share of each surface than the
-  // right one). Far surfaces are what such errors move most (0.3 px at 2.5 m is 0.2 m). With
-  // 0.3 the start views of 51 worlds lose 1.2% of their FOG cells and 0.07% of the right ones
-  // (FOG accuracy 0.870 to 0.881); off by default, since the missions, developed without it,
-  // meet 61 of the suite's 65 expectations with it against 64 (README, "Status").
-  double refine_left_right_tolerance = 0.0;
-  // A full left-right check: the pair is matched a second time with the right image as the
-  // reference (both flipped), and a left disparity d at u is kept only if the right disparity
-  // at u - d agrees within left_right_tolerance pixels. OpenCV's disp12_max_diff, read off
-  // the same cost volume, lets through mismatches the second matching does not repeat: on
-  // the course's start views they were spurious steps on the floor (128 of 1644 observed FOG
-  // cells typed stairs on flat floor without it, 32 with it), and in front of a near wall
-  // streaks of phantom obstacles behind it. Costs a second matching (~2x stereo time).
-  bool left_right_check = true;
-  double left_right_tolerance = 1.0;  // pixels
-  // Depth-edge rims (DepthEdgeRims): near a depth edge the matching block covers both
-  // surfaces and the nearer one wins, so background pixels beside a foreground object take its
-  // disparity (foreground fattening; both matchings agree, so the left-right check keeps them).
-  // A pixel is on a rim if a disparity at least edge_jump pixels smaller lies within
-  // edge_margin pixels of it along the row, or within 2 * edge_margin rows of it in its column
-  // and also at most (1 - edge_depth_ratio) times its own. Up and down the image, semi-global
-  // matching's vertical paths carry the fattening further (4 rows below a table top's edge),
-  // and surfaces seen at a grazing angle change fast (a table's underside 0.15 m above the
-  // eyes, 0.3 px per row), hence the ratio. 0 marks nothing.
-  int edge_margin = 3;            // pixels (block_size / 2 + 1)
-  double edge_jump = 1.0;         // pixels; a floor seen from the eyes changes ~0.1 px per row
-  double edge_depth_ratio = 0.2;  // the background is at least 25% farther
+  double refine_left_right_tolerance = 0.0;  // refined from each eye, the two must agree within
+                                             // this, pixels; 0 = no check
+  bool left_right_check = true;       // match a second time right to left and compare
+  double left_right_tolerance = 1.0;  // the two matchings must agree within this, pixels
+  int edge_margin = 3;            // depth-edge rims: reach along a row, pixels; 0 marks nothing
+  double edge_jump = 1.0;         // depth-edge rims: smallest disparity jump, pixels
+  double edge_depth_ratio = 0.2;  // depth-edge rims in a column: the far disparity is at most
+                                  // (1 - this) times the pixel's
 };
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
 // +K.baseline along the camera x axis) into 3D points in the left camera frame (OpenCV
-// convention, metres). Pixels where matching fails are NaN. If disparity_px is given it receives
+// convention, metres). The search covers the disparities that a matching at half resolution
+// over the whole range finds (StereoParams::range_margin). Pixels where matching fails are NaN. If disparity_px is given it receives
 // the disparity in pixels (NaN where invalid), the same size as the images; there the pixels
 // that only p.refine_left_right_tolerance drops keep their disparity (DepthEdgeRims reads the
 // edges of nearer surfaces from it).
