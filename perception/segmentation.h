@@ -31,9 +31,9 @@ struct StereoParams {
   bool full_dp = false;           // OpenCV MODE_HH (full 8-path) instead of MODE_SGBM
   bool three_way = false;         // OpenCV MODE_SGBM_3WAY instead of MODE_SGBM (unless full_dp)
   bool grey = false;              // match grey levels, not colours
-  int range_margin = 4;           // search what a half-resolution matching finds +- this, pixels;
+  int range_margin = -1;          // search what a half-resolution matching finds +- this, pixels;
                                   // < 0 = always the whole range
-  int range_min_pixels = 8;       // disparities fewer half-resolution pixels have are left out
+  int range_min_pixels = 1;       // disparities fewer half-resolution pixels have are left out
   bool pad_left = true;           // pad both images on the left so border columns get disparities
   double max_depth = 10.0;        // metres; farther points (disparity below f B / max_depth) NaN
   int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on the
@@ -51,8 +51,8 @@ struct StereoParams {
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
 // +K.baseline along the camera x axis) into 3D points in the left camera frame (OpenCV
-// convention, metres). The search covers the disparities that a matching at half resolution
-// over the whole range finds (StereoParams::range_margin). Pixels where matching fails are NaN. If disparity_px is given it receives
+// convention, metres). With StereoParams::range_margin >= 0 the search covers only the
+// disparities that a matching at half resolution over the whole range finds. Pixels where matching fails are NaN. If disparity_px is given it receives
 // the disparity in pixels (NaN where invalid), the same size as the images; there the pixels
 // that only p.refine_left_right_tolerance drops keep their disparity (DepthEdgeRims reads the
 // edges of nearer surfaces from it).
@@ -121,11 +121,11 @@ struct PlaneSet {
 // which also accepts lines into planes by their end points' distance d_line instead of r_sigma.
 enum class LineMethod { kRdSplit, kSplit };
 
-// Parameters of scan-line grouping; defaults are the paper's Table 1 for stereo data.
+// Parameters of scan-line grouping; defaults are the paper's Table 1 for stereo data. The
+// extensions' mechanisms and how their values were found: docs/params.md, "Segmentation".
 struct SegmentParams {
   int n_min = 5;            // N_min, fewest points of a line segment
-  int c_max = 15;           // C_max, consecutive same-side points that force a split (10 for
-                            // precise range data)
+  int c_max = 15;           // C_max, consecutive same-side points that force a split
   double r_seed = 2;        // r_sigma threshold for the three lines of a seed (eq. 13)
   double r_grow = 3;        // r_sigma threshold for growing a region by a line (eq. 14)
   LineMethod method = LineMethod::kRdSplit;
@@ -133,43 +133,20 @@ struct SegmentParams {
   double d_line = 0.03;     // UB: end point distance to the plane for line membership, metres
   int trade_window = 5;     // side in pixels of the window for trading points (odd)
   // Extensions that the paper does not name (set to 0 to turn off):
-  double sigma_min = 0.001;     // floor on a line's sigma and a plane's rms in r_sigma, metres
-                                // (noise-free or 1 mm quantised depth would give sigma ~ 0)
-  double side_tolerance = 0.0005;  // residuals below this (metres) count as on the line, not on
-                                   // a side, in max-count-consecutive-same-side
-  double jump_ratio = 0.1;      // a scan line is cut between neighbours whose depth differs by
-                                // more than this fraction (occlusion boundaries)
+  double sigma_min = 0.001;        // floor on a line's sigma and a plane's rms in r_sigma, metres
+  double side_tolerance = 0.0005;  // smaller residuals (metres) count as on the line, no side
+  double jump_ratio = 0.1;      // a scan line is cut where neighbours' depths differ by this share
   int max_gap_px = 1;           // invalid pixels a line segment may bridge on its scan line
   int min_plane_points = 15;    // planes with fewer points after post-processing are dropped
   bool trade_lines = true;      // post-processing steps, each may be turned off
   bool trade_points = true;
   bool merge_planes = true;
-  // Extension for range noise along the viewing rays (stereo: depth error grows with z^2 and
-  // lies along the ray). A line's sigma is its spread across the line within its scan plane;
-  // for a plane with normal n the same ray noise spreads points across the plane by
-  // sigma |n . q| / |m . q| (q the ray to the line's centroid, m the line's normal in its scan
-  // plane), which on a floor seen at a grazing angle is several times smaller. If set, eq.
-  // (13, 14) use this expected spread (never more than sigma) in place of sigma.
-  bool ray_noise = false;
-  // Extension: a line also fits a plane only if its mean distance to the plane is below
-  // offset_sigmas standard errors of that mean, sigma_n / sqrt(N / correlation_px) (sigma_n the
-  // spread above; neighbouring stereo depths share their matching window, so only every
-  // correlation_px-th point counts as independent). This separates parallel surfaces a few
-  // centimetres apart (treads) whose lines each scatter more than their offset; offsets up to
-  // offset_min (metres) always pass, as stereo planes bend by a few millimetres. Merging
-  // regions applies the same bound to how far the joint plane departs from each region's own
-  // plane over its points (RMS), which also catches a joint plane tilted between two parallel
-  // treads (no mean offset from either). 0 = off.
-  double offset_sigmas = 0;
-  double correlation_px = 5;
-  double offset_min = 0.01;
-  bool merge_across_missing = true;  // extension: regions that only pixels without a point
-                                     // separate along a row or column count as neighbours
-                                     // when merging (a band of a surface hidden from one eye)
-  bool merge_coplanar = false;  // extension: also merge regions that are not neighbours in the
-                                // image (one surface split by an occluder) by the same test;
-                                // off by default as it also joins distinct coplanar surfaces
-                                // (two treads of one height)
+  bool ray_noise = false;       // eq. (13, 14) use the spread across the plane of noise along rays
+  double offset_sigmas = 0;     // a line fits a plane only within this many standard errors; 0 off
+  double correlation_px = 5;    // neighbouring points that share one stereo window
+  double offset_min = 0.01;     // offsets up to this always pass the offset test, metres
+  bool merge_across_missing = true;  // regions separated only by missing points are neighbours
+  bool merge_coplanar = false;  // also merge coplanar regions that are not neighbours in the image
 };
 
 // Table 1 settings for precise range data such as the ideal depth mode: C_max = 10 and a

@@ -210,7 +210,7 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   EXPECT_EQ(unmarked, 0);
 }
 
-// The search over the range a half-resolution matching finds (StereoParams::range_margin)
+// The search over the range a half-resolution matching finds (StereoParams::range_margin 16)
 // against the whole range, on scenes from 0.15 m (70 px) to 3 m (3.5 px) away: as many points,
 // and the same disparities where both have one.
 TEST(Stereo, SearchRangeFromHalfResolutionKeepsNearAndFarSurfaces) {
@@ -228,10 +228,11 @@ TEST(Stereo, SearchRangeFromHalfResolutionKeepsNearAndFarSurfaces) {
         {"floor and treads", near_step, SceneCamera(0, 0, 0.55, 0.6)}}) {
     RgbImage left, right;
     RenderStereoPair(scene, K, X_WC, &left, &right);
-    StereoParams whole;
+    StereoParams found, whole;
+    found.range_margin = 16;
     whole.range_margin = -1;
     Image<float> d_range, d_whole;
-    StereoPointImage(left, right, K, StereoParams(), &d_range);
+    StereoPointImage(left, right, K, found, &d_range);
     StereoPointImage(left, right, K, whole, &d_whole);
     int n_range = 0, n_whole = 0, both = 0, differ = 0;
     for (size_t i = 0; i < d_range.data.size(); ++i) {
