@@ -15,68 +15,44 @@ namespace fognav::perception {
 // ---- range data ----
 
 // OpenCV StereoSGBM settings for the 176x144, 45° hfov, 5 cm baseline head camera on textured
-// renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m).
+// renders (focal length about 212 px, so disparity 10.6 px at 1 m and 3.5 px at 3 m). How the
+// values were found: docs/params.md, "Stereo".
 struct StereoParams {
-  int min_disparity = 0;          // pixels
-  int num_disparities = 128;      // search range in pixels, a multiple of 16 (nearest 0.083 m
-                                  // on the 176-pixel, 45-degree, 5 cm sensor; a surface nearer
-                                  // than that matches garbage, which left_right_check does not
-                                  // always remove: 64 (0.17 m) put phantom obstacles under a
-                                  // table whose edge the standing robot's eyes came within
-                                  // 0.13 m of)
+  int min_disparity = 0;          // smallest disparity searched, pixels
+  int num_disparities = 128;      // whole search range, pixels, a multiple of 16 (nearest 0.083 m)
   int block_size = 5;             // matching block side in pixels, odd
-  int p1 = 0;                     // SGM small-change penalty; 0 = 8 * 3 * block_size^2
-  int p2 = 0;                     // SGM large-change penalty; 0 = 32 * 3 * block_size^2
+  int p1 = 0;                     // SGM small-change penalty; 0 = 8 * channels * block_size^2
+  int p2 = 0;                     // SGM large-change penalty; 0 = 32 * channels * block_size^2
   int disp12_max_diff = 1;        // OpenCV's own left-right test in pixels; < 0 disables
   int pre_filter_cap = 31;        // clip of the x-derivative prefilter
   int uniqueness_ratio = 20;      // percent margin of the best over the second-best cost
   int speckle_window_size = 40;   // largest speckle in pixels removed; 0 disables
   int speckle_range = 2;          // disparity variation (pixels) within one connected speckle
   bool full_dp = false;           // OpenCV MODE_HH (full 8-path) instead of MODE_SGBM
-  bool pad_left = true;           // pad both images on the left by num_disparities columns so
-                                  // that the left border columns also get disparities
+  bool three_way = false;         // OpenCV MODE_SGBM_3WAY instead of MODE_SGBM (unless full_dp)
+  bool grey = false;              // match grey levels, not colours
+  int range_margin = -1;          // search what a half-resolution matching finds +- this, pixels;
+                                  // < 0 = always the whole range
+  int range_min_pixels = 1;       // disparities fewer half-resolution pixels have are left out
+  bool pad_left = true;           // pad both images on the left so border columns get disparities
   double max_depth = 10.0;        // metres; farther points (disparity below f B / max_depth) NaN
-  int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on
-                                  // the grey images (0 = SGBM's own interpolation, which locks
-                                  // towards whole pixels and makes surfaces look terraced)
+  int refine_iterations = 3;      // Gauss-Newton steps refining each disparity to sub-pixel on the
+                                  // grey images (0 = SGBM's own interpolation)
   int refine_window = 5;          // side in pixels of the refinement window, odd
-  // A left-right check of the refined disparity: the match is refined a second time from the
-  // right image's window (around u - d, matched in the left image), and the pixel's point is
-  // kept only if the two agree within this many pixels; 0 = no check. Where the two windows see
-  // the same surface the two refinements agree to hundredths of a pixel. They part where the
-  // windows differ: texture finer than a pixel that aliases differently in each eye, and
-  // windows across a depth edge (the left one holds another share of each surface than the
-  // right one). Far surfaces are what such errors move most (0.3 px at 2.5 m is 0.2 m). With
-  // 0.3 the start views of 51 worlds lose 1.2% of their FOG cells and 0.07% of the right ones
-  // (FOG accuracy 0.870 to 0.881); off by default, since the missions, developed without it,
-  // meet 61 of the suite's 65 expectations with it against 64 (README, "Status").
-  double refine_left_right_tolerance = 0.0;
-  // A full left-right check: the pair is matched a second time with the right image as the
-  // reference (both flipped), and a left disparity d at u is kept only if the right disparity
-  // at u - d agrees within left_right_tolerance pixels. OpenCV's disp12_max_diff, read off
-  // the same cost volume, lets through mismatches the second matching does not repeat: on
-  // the course's start views they were spurious steps on the floor (128 of 1644 observed FOG
-  // cells typed stairs on flat floor without it, 32 with it), and in front of a near wall
-  // streaks of phantom obstacles behind it. Costs a second matching (~2x stereo time).
-  bool left_right_check = true;
-  double left_right_tolerance = 1.0;  // pixels
-  // Depth-edge rims (DepthEdgeRims): near a depth edge the matching block covers both
-  // surfaces and the nearer one wins, so background pixels beside a foreground object take its
-  // disparity (foreground fattening; both matchings agree, so the left-right check keeps them).
-  // A pixel is on a rim if a disparity at least edge_jump pixels smaller lies within
-  // edge_margin pixels of it along the row, or within 2 * edge_margin rows of it in its column
-  // and also at most (1 - edge_depth_ratio) times its own. Up and down the image, semi-global
-  // matching's vertical paths carry the fattening further (4 rows below a table top's edge),
-  // and surfaces seen at a grazing angle change fast (a table's underside 0.15 m above the
-  // eyes, 0.3 px per row), hence the ratio. 0 marks nothing.
-  int edge_margin = 3;            // pixels (block_size / 2 + 1)
-  double edge_jump = 1.0;         // pixels; a floor seen from the eyes changes ~0.1 px per row
-  double edge_depth_ratio = 0.2;  // the background is at least 25% farther
+  double refine_left_right_tolerance = 0.0;  // refined from each eye, the two must agree within
+                                             // this, pixels; 0 = no check
+  bool left_right_check = true;       // match a second time right to left and compare
+  double left_right_tolerance = 1.0;  // the two matchings must agree within this, pixels
+  int edge_margin = 3;            // depth-edge rims: reach along a row, pixels; 0 marks nothing
+  double edge_jump = 1.0;         // depth-edge rims: smallest disparity jump, pixels
+  double edge_depth_ratio = 0.2;  // depth-edge rims in a column: the far disparity is at most
+                                  // (1 - this) times the pixel's
 };
 
 // Dense stereo by semi-global matching on a rectified horizontal pair (right camera at
 // +K.baseline along the camera x axis) into 3D points in the left camera frame (OpenCV
-// convention, metres). Pixels where matching fails are NaN. If disparity_px is given it receives
+// convention, metres). With StereoParams::range_margin >= 0 the search covers only the
+// disparities that a matching at half resolution over the whole range finds. Pixels where matching fails are NaN. If disparity_px is given it receives
 // the disparity in pixels (NaN where invalid), the same size as the images; there the pixels
 // that only p.refine_left_right_tolerance drops keep their disparity (DepthEdgeRims reads the
 // edges of nearer surfaces from it).
@@ -145,11 +121,11 @@ struct PlaneSet {
 // which also accepts lines into planes by their end points' distance d_line instead of r_sigma.
 enum class LineMethod { kRdSplit, kSplit };
 
-// Parameters of scan-line grouping; defaults are the paper's Table 1 for stereo data.
+// Parameters of scan-line grouping; defaults are the paper's Table 1 for stereo data. The
+// extensions' mechanisms and how their values were found: docs/params.md, "Segmentation".
 struct SegmentParams {
   int n_min = 5;            // N_min, fewest points of a line segment
-  int c_max = 15;           // C_max, consecutive same-side points that force a split (10 for
-                            // precise range data)
+  int c_max = 15;           // C_max, consecutive same-side points that force a split
   double r_seed = 2;        // r_sigma threshold for the three lines of a seed (eq. 13)
   double r_grow = 3;        // r_sigma threshold for growing a region by a line (eq. 14)
   LineMethod method = LineMethod::kRdSplit;
@@ -157,43 +133,20 @@ struct SegmentParams {
   double d_line = 0.03;     // UB: end point distance to the plane for line membership, metres
   int trade_window = 5;     // side in pixels of the window for trading points (odd)
   // Extensions that the paper does not name (set to 0 to turn off):
-  double sigma_min = 0.001;     // floor on a line's sigma and a plane's rms in r_sigma, metres
-                                // (noise-free or 1 mm quantised depth would give sigma ~ 0)
-  double side_tolerance = 0.0005;  // residuals below this (metres) count as on the line, not on
-                                   // a side, in max-count-consecutive-same-side
-  double jump_ratio = 0.1;      // a scan line is cut between neighbours whose depth differs by
-                                // more than this fraction (occlusion boundaries)
+  double sigma_min = 0.001;        // floor on a line's sigma and a plane's rms in r_sigma, metres
+  double side_tolerance = 0.0005;  // smaller residuals (metres) count as on the line, no side
+  double jump_ratio = 0.1;      // a scan line is cut where neighbours' depths differ by this share
   int max_gap_px = 1;           // invalid pixels a line segment may bridge on its scan line
   int min_plane_points = 15;    // planes with fewer points after post-processing are dropped
   bool trade_lines = true;      // post-processing steps, each may be turned off
   bool trade_points = true;
   bool merge_planes = true;
-  // Extension for range noise along the viewing rays (stereo: depth error grows with z^2 and
-  // lies along the ray). A line's sigma is its spread across the line within its scan plane;
-  // for a plane with normal n the same ray noise spreads points across the plane by
-  // sigma |n . q| / |m . q| (q the ray to the line's centroid, m the line's normal in its scan
-  // plane), which on a floor seen at a grazing angle is several times smaller. If set, eq.
-  // (13, 14) use this expected spread (never more than sigma) in place of sigma.
-  bool ray_noise = false;
-  // Extension: a line also fits a plane only if its mean distance to the plane is below
-  // offset_sigmas standard errors of that mean, sigma_n / sqrt(N / correlation_px) (sigma_n the
-  // spread above; neighbouring stereo depths share their matching window, so only every
-  // correlation_px-th point counts as independent). This separates parallel surfaces a few
-  // centimetres apart (treads) whose lines each scatter more than their offset; offsets up to
-  // offset_min (metres) always pass, as stereo planes bend by a few millimetres. Merging
-  // regions applies the same bound to how far the joint plane departs from each region's own
-  // plane over its points (RMS), which also catches a joint plane tilted between two parallel
-  // treads (no mean offset from either). 0 = off.
-  double offset_sigmas = 0;
-  double correlation_px = 5;
-  double offset_min = 0.01;
-  bool merge_across_missing = true;  // extension: regions that only pixels without a point
-                                     // separate along a row or column count as neighbours
-                                     // when merging (a band of a surface hidden from one eye)
-  bool merge_coplanar = false;  // extension: also merge regions that are not neighbours in the
-                                // image (one surface split by an occluder) by the same test;
-                                // off by default as it also joins distinct coplanar surfaces
-                                // (two treads of one height)
+  bool ray_noise = false;       // eq. (13, 14) use the spread across the plane of noise along rays
+  double offset_sigmas = 0;     // a line fits a plane only within this many standard errors; 0 off
+  double correlation_px = 5;    // neighbouring points that share one stereo window
+  double offset_min = 0.01;     // offsets up to this always pass the offset test, metres
+  bool merge_across_missing = true;  // regions separated only by missing points are neighbours
+  bool merge_coplanar = false;  // also merge coplanar regions that are not neighbours in the image
 };
 
 // Table 1 settings for precise range data such as the ideal depth mode: C_max = 10 and a

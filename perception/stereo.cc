@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -13,6 +14,7 @@ namespace fognav::perception {
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr int kRangeBlockSize = 3;  // block side of the half-resolution matching, pixels
 
 cv::Mat ToMat(const RgbImage& image) {
   cv::Mat mat(image.height, image.width, CV_8UC3);
@@ -57,34 +59,104 @@ cv::Mat GreyFloat(const RgbImage& image) {
 float RefineDisparity(const cv::Mat& ref, const cv::Mat& other, const cv::Mat& other_dx, int sign,
                       int u, int v, float d0, int half, int iterations) {
   const int w = ref.cols, h = ref.rows;
+  // With x + sign d = (x + shift) + t (a whole shift, 0 <= t < 1, the same for the window),
+  // e = e0 - t de and g = g0 + t dg are linear in t, so sum e g = a + t b - t^2 c and
+  // sum g^2 = gg + 2 t gh + t^2 hh from window sums that depend on the shift alone.
+  int sums_shift = std::numeric_limits<int>::min();
+  float a = 0, b = 0, c = 0, gg = 0, gh = 0, hh = 0;
   double d = d0;
   for (int it = 0; it < iterations; ++it) {
-    // x + sign d = (x + shift) + t with a whole shift and 0 <= t < 1, the same for the window
     const int shift = int(std::floor(sign * d));
-    const float t = float(sign * d - shift), s = 1 - t;
-    const int ub = std::max({u - half, 0, -shift});
-    const int ue = std::min({u + half, w - 1, w - 2 - shift});
-    double seg = 0, sgg = 0;
-    for (int vv = std::max(v - half, 0); vv <= std::min(v + half, h - 1); ++vv) {
-      const float* r = ref.ptr<float>(vv);
-      const float* o = other.ptr<float>(vv);
-      const float* g = other_dx.ptr<float>(vv);
-      for (int uu = ub; uu <= ue; ++uu) {
-        const int x0 = uu + shift;
-        const float ov = s * o[x0] + t * o[x0 + 1];
-        const float gv = s * g[x0] + t * g[x0 + 1];
-        const float e = r[uu] - ov;
-        seg += e * gv;
-        sgg += gv * gv;
+    if (shift != sums_shift) {
+      sums_shift = shift;
+      a = b = c = gg = gh = hh = 0;
+      const int ub = std::max({u - half, 0, -shift});
+      const int ue = std::min({u + half, w - 1, w - 2 - shift});
+      for (int vv = std::max(v - half, 0); vv <= std::min(v + half, h - 1); ++vv) {
+        const float* r = ref.ptr<float>(vv);
+        const float* o = other.ptr<float>(vv) + shift;
+        const float* g = other_dx.ptr<float>(vv) + shift;
+        for (int uu = ub; uu <= ue; ++uu) {
+          const float e0 = r[uu] - o[uu], de = o[uu + 1] - o[uu];
+          const float g0 = g[uu], dg = g[uu + 1] - g[uu];
+          a += e0 * g0;
+          b += e0 * dg - de * g0;
+          c += de * dg;
+          gg += g0 * g0;
+          gh += g0 * dg;
+          hh += dg * dg;
+        }
       }
     }
+    const double t = sign * d - shift;
+    const double seg = a + t * (b - t * c), sgg = gg + t * (2 * gh + t * hh);
     if (!(sgg > 1e-6)) return std::numeric_limits<float>::quiet_NaN();
-    const double step = std::clamp(sign * double(seg) / sgg, -0.5, 0.5);
+    const double step = std::clamp(sign * seg / sgg, -0.5, 0.5);
     d += step;
     if (std::abs(d - d0) > 1.0) return std::numeric_limits<float>::quiet_NaN();
     if (std::abs(step) < 1e-3) break;
   }
   return float(d);
+}
+
+// Semi-global matching of a rectified pair over the disparities [lo, lo + num) (num a multiple
+// of 16), as 16 x disparity, -1 where it fails. With p.pad_left both images are padded on the
+// left by lo + num columns, so that every column gets the whole range.
+cv::Mat Match(const cv::Mat& left, const cv::Mat& right, int lo, int num, int block_size,
+              const StereoParams& p) {
+  const int pad = p.pad_left ? std::max(0, lo + num) : 0;
+  cv::Mat l = left, r = right;
+  if (pad > 0) {
+    cv::copyMakeBorder(left, l, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+    cv::copyMakeBorder(right, r, 0, 0, pad, 0, cv::BORDER_REPLICATE);
+  }
+  const int area = block_size * block_size * left.channels();
+  const int mode = p.full_dp     ? cv::StereoSGBM::MODE_HH
+                   : p.three_way ? cv::StereoSGBM::MODE_SGBM_3WAY
+                                 : cv::StereoSGBM::MODE_SGBM;
+  auto sgbm = cv::StereoSGBM::create(lo, num, block_size, p.p1 > 0 ? p.p1 : 8 * area,
+                                     p.p2 > 0 ? p.p2 : 32 * area, p.disp12_max_diff,
+                                     p.pre_filter_cap, p.uniqueness_ratio, p.speckle_window_size,
+                                     p.speckle_range, mode);
+  cv::Mat disp16;
+  sgbm->compute(l, r, disp16);
+  cv::Mat out = disp16(cv::Rect(pad, 0, left.cols, left.rows)).clone();
+  out.setTo(-1, out < 16 * std::max(lo, 1));  // OpenCV marks failures (lo - 1) * 16
+  return out;
+}
+
+// The disparities worth searching at full resolution, [*lo, *lo + *num): those that a
+// matching of the pair at half resolution over the whole range finds at p.range_min_pixels
+// pixels or more, widened by p.range_margin pixels. The whole range if it finds none.
+void SearchRange(const cv::Mat& left, const cv::Mat& right, const StereoParams& p, int* lo,
+                 int* num) {
+  *lo = p.min_disparity;
+  *num = p.num_disparities;
+  if (p.range_margin < 0 || left.cols < 2 || left.rows < 2) return;
+  cv::Mat l, r;
+  const cv::Size half(left.cols / 2, left.rows / 2);
+  cv::resize(left, l, half, 0, 0, cv::INTER_AREA);
+  cv::resize(right, r, half, 0, 0, cv::INTER_AREA);
+  const int half_lo = int(std::floor(p.min_disparity / 2.0));
+  const int half_num = std::max(16, (p.num_disparities / 2 + 15) / 16 * 16);
+  const cv::Mat disp16 = Match(l, r, half_lo, half_num, kRangeBlockSize, p);
+  std::vector<int> count(size_t(half_num) + 1, 0);  // pixels per whole disparity - half_lo
+  for (int v = 0; v < disp16.rows; ++v) {
+    const int16_t* row = disp16.ptr<int16_t>(v);
+    for (int u = 0; u < disp16.cols; ++u) {
+      if (row[u] >= 0) ++count[size_t(std::clamp(row[u] / 16 - half_lo, 0, half_num))];
+    }
+  }
+  int first = 0, last = half_num, sum = 0;
+  while (first <= half_num && (sum += count[size_t(first)]) < p.range_min_pixels) ++first;
+  sum = 0;
+  while (last >= 0 && (sum += count[size_t(last)]) < p.range_min_pixels) --last;
+  if (last < first) return;
+  const int end = p.min_disparity + p.num_disparities;
+  *lo = std::max(p.min_disparity, 2 * (first + half_lo) - p.range_margin);
+  const int hi = std::min(end, 2 * (last + half_lo) + 2 + p.range_margin);
+  *num = std::max(16, (hi - *lo + 15) / 16 * 16);
+  if (*lo + *num > end) *lo = std::max(p.min_disparity, end - *num);
 }
 
 }  // namespace
@@ -96,34 +168,26 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
   if (disparity_px) *disparity_px = Image<float>(w, h, kNaN);
   if (w == 0 || h == 0 || right.width != w || right.height != h) return points;
 
-  // semi-global matching, optionally on images padded on the left
-  const int pad = p.pad_left ? p.min_disparity + p.num_disparities : 0;
-  const cv::Mat left_mat = ToMat(left), right_mat = ToMat(right);
-  auto padded = [pad](const cv::Mat& image) {
-    cv::Mat out = image;
-    if (pad > 0) cv::copyMakeBorder(image, out, 0, 0, pad, 0, cv::BORDER_REPLICATE);
-    return out;
-  };
-  const cv::Mat l = padded(left_mat), r = padded(right_mat);
-  const int area = p.block_size * p.block_size * 3;
-  const int mode = p.full_dp ? cv::StereoSGBM::MODE_HH : cv::StereoSGBM::MODE_SGBM;
-  auto sgbm = cv::StereoSGBM::create(p.min_disparity, p.num_disparities, p.block_size,
-                                     p.p1 > 0 ? p.p1 : 8 * area, p.p2 > 0 ? p.p2 : 32 * area,
-                                     p.disp12_max_diff, p.pre_filter_cap, p.uniqueness_ratio,
-                                     p.speckle_window_size, p.speckle_range, mode);
-  cv::Mat disp16;
-  sgbm->compute(l, r, disp16);
+  // semi-global matching over the range worth searching, of colours or grey levels
+  cv::Mat left_mat = ToMat(left), right_mat = ToMat(right);
+  if (p.grey) {
+    cv::cvtColor(left_mat, left_mat, cv::COLOR_BGR2GRAY);
+    cv::cvtColor(right_mat, right_mat, cv::COLOR_BGR2GRAY);
+  }
+  int lo = 0, num = 0;
+  SearchRange(left_mat, right_mat, p, &lo, &num);
+  cv::Mat disp16 = Match(left_mat, right_mat, lo, num, p.block_size, p);
   if (p.left_right_check) {
     // the right image as the reference: flipped, the right image becomes a left one and
     // disparities keep their sign; right column ur is column w - 1 - ur of the flipped pair
-    cv::Mat lf, rf, disp16_right;
+    cv::Mat lf, rf;
     cv::flip(right_mat, lf, 1);
     cv::flip(left_mat, rf, 1);
-    sgbm->compute(padded(lf), padded(rf), disp16_right);
+    const cv::Mat disp16_right = Match(lf, rf, lo, num, p.block_size, p);
     const double tolerance16 = 16.0 * p.left_right_tolerance;
     for (int v = 0; v < h; ++v) {
-      int16_t* row = disp16.ptr<int16_t>(v) + pad;
-      const int16_t* row_right = disp16_right.ptr<int16_t>(v) + pad;
+      int16_t* row = disp16.ptr<int16_t>(v);
+      const int16_t* row_right = disp16_right.ptr<int16_t>(v);
       for (int u = 0; u < w; ++u) {
         if (row[u] <= 0) continue;
         const int ur = u - int(std::lround(row[u] / 16.0));
@@ -148,7 +212,7 @@ PointImage StereoPointImage(const RgbImage& left, const RgbImage& right, const C
   const double fb = K.fx * K.baseline;
   const double min_disp = fb / p.max_depth;
   for (int v = 0; v < h; ++v) {
-    const int16_t* row = disp16.ptr<int16_t>(v) + pad;
+    const int16_t* row = disp16.ptr<int16_t>(v);
     for (int u = 0; u < w; ++u) {
       const int raw = row[u];
       if (raw <= 0) continue;

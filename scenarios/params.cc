@@ -114,8 +114,8 @@ void AddStereoParamsRows(std::vector<ParamInfo>* t) {
   t->back().rule = Multiple16;
   add("block_size", {1, 31}, "matching block side, pixels (odd)", &S::block_size);
   t->back().rule = Odd;
-  add("p1", {0, 1e6}, "SGM small-change penalty; 0 = 8 * 3 * block_size^2", &S::p1);
-  add("p2", {0, 1e6}, "SGM large-change penalty; 0 = 32 * 3 * block_size^2", &S::p2);
+  add("p1", {0, 1e6}, "SGM small-change penalty; 0 = 8 * channels * block_size^2", &S::p1);
+  add("p2", {0, 1e6}, "SGM large-change penalty; 0 = 32 * channels * block_size^2", &S::p2);
   add("disp12_max_diff", {-1, 256}, "OpenCV's left-right test, pixels; < 0 disables",
       &S::disp12_max_diff);
   add("pre_filter_cap", {1, 63}, "clip of the x-derivative prefilter", &S::pre_filter_cap);
@@ -126,6 +126,15 @@ void AddStereoParamsRows(std::vector<ParamInfo>* t) {
   add("speckle_range", kPixels, "disparity variation within one speckle, pixels",
       &S::speckle_range);
   add("full_dp", kFlag, "OpenCV MODE_HH (full 8-path) instead of MODE_SGBM", &S::full_dp);
+  add("three_way", kFlag, "OpenCV MODE_SGBM_3WAY instead of MODE_SGBM (unless full_dp)",
+      &S::three_way);
+  add("grey", kFlag, "match grey levels, not colours", &S::grey);
+  add("range_margin", {-1, 256},
+      "search what a half-resolution matching finds +- this, pixels; < 0 = whole range",
+      &S::range_margin);
+  add("range_min_pixels", {1, 100000},
+      "disparities fewer half-resolution pixels have are left out of the search",
+      &S::range_min_pixels);
   add("pad_left", kFlag, "pad the images on the left so border columns get disparities",
       &S::pad_left);
   add("max_depth", {0.1, 1000}, "farther points are dropped, metres", &S::max_depth);

@@ -210,6 +210,47 @@ TEST(Stereo, FattenedPixelsBesideANearerSurfaceLieOnItsRim) {
   EXPECT_EQ(unmarked, 0);
 }
 
+// The search over the range a half-resolution matching finds (StereoParams::range_margin 16)
+// against the whole range, on scenes from 0.15 m (70 px) to 3 m (3.5 px) away: as many points,
+// and the same disparities where both have one.
+TEST(Stereo, SearchRangeFromHalfResolutionKeepsNearAndFarSurfaces) {
+  const auto K = SceneIntrinsics(176, 144);
+  Scene posts = PostsBeforeAWall();  // posts 0.2 m away before a wall at 3 m
+  for (internal::SceneBox& box : posts.boxes) {
+    if (box.lo.x() < 2) box.lo.x() = 0.2, box.hi.x() = 0.3;
+  }
+  Scene near_step = internal::Staircase(0.3, 2, 0.25, 0.05);  // a floor with two treads
+  for (const auto& [name, scene, X_WC] :
+       {std::tuple<const char*, Scene, Eigen::Isometry3d>{"wall 0.15 m", Wall(0.15),
+                                                          SceneCamera(0, 0, 0, 0)},
+        {"wall 3 m", Wall(3.0), SceneCamera(0, 0, 0, 0)},
+        {"posts 0.2 m before a wall at 3 m", posts, SceneCamera(0, 0, 0, 0)},
+        {"floor and treads", near_step, SceneCamera(0, 0, 0.55, 0.6)}}) {
+    RgbImage left, right;
+    RenderStereoPair(scene, K, X_WC, &left, &right);
+    StereoParams found, whole;
+    found.range_margin = 16;
+    whole.range_margin = -1;
+    Image<float> d_range, d_whole;
+    StereoPointImage(left, right, K, found, &d_range);
+    StereoPointImage(left, right, K, whole, &d_whole);
+    int n_range = 0, n_whole = 0, both = 0, differ = 0;
+    for (size_t i = 0; i < d_range.data.size(); ++i) {
+      const bool a = std::isfinite(d_range.data[i]), b = std::isfinite(d_whole.data[i]);
+      n_range += a;
+      n_whole += b;
+      if (!a || !b) continue;
+      ++both;
+      differ += std::abs(d_range.data[i] - d_whole.data[i]) > 0.5f;
+    }
+    std::printf("%s: %d points with the found range, %d with the whole range, %d of %d differ\n",
+                name, n_range, n_whole, differ, both);
+    EXPECT_GT(n_whole, 176 * 144 / 2) << name;
+    EXPECT_GT(n_range, 0.98 * n_whole) << name;
+    EXPECT_LT(differ, both / 100) << name;
+  }
+}
+
 // The refined left-right check (StereoParams::refine_left_right_tolerance) on the posts before
 // a wall and on a floor seen from a standing robot's eyes: the share of points off by more than
 // 0.3 px (on the posts' sides the matching block covers post and wall; a far floor's texture is

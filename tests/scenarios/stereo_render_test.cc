@@ -87,8 +87,8 @@ TEST(StereoRender, RefinedLeftRightCheckDropsFarMismatches) {
 // Range quality of the default stereo against the renderer's depth (within 2.5 m), pooled over
 // standing views of the course (its start, the pose before the stairs, facing the gap) and of
 // the table world: coverage, median disparity error and the share off by more than a pixel.
-// Measured: valid 0.9275, median 0.0697 px, bad 1.10%; with the 128-pixel search and no near
-// check before it, 0.9272, 0.0697 px, 1.10%.
+// Measured: valid 0.9272, median 0.0697 px, bad 1.10%; with the range found at half resolution
+// (StereoParams::range_margin 16), 0.9277, 0.0696 px, 1.10%.
 TEST(StereoRender, RangeOnCourseViewsKeepsItsCoverageAndErrors) {
   std::vector<perception::StereoScore> scores;
   for (const char* file : {"scenarios/stairs_and_table.yaml", "scenarios/table.yaml"}) {
