@@ -171,7 +171,7 @@ void AddPerceptionParamsRows(std::vector<ParamInfo>* t) {
                   "column-rim points this high above the robot's floor are kept, metres", P,
                   &PerceptionParams::rim_keep_height));
   t->push_back(Row("perception.view_every_steps", {0, 1000},
-                  "while walking, a view every this many footsteps; 0 = none", P,
+                  "with noisy odometry, a view every this many footsteps walked; 0 = none", P,
                   &PerceptionParams::view_every_steps));
 }
 

@@ -44,7 +44,7 @@ struct PerceptionParams {
   perception::MapParams map = MapDefaults();
   perception::LocalizationParams localization;
   perception::VisualOdometryParams visual_odometry;
-  int view_every_steps = 2;  // while walking, a view every this many footsteps; 0 = none
+  int view_every_steps = 2;  // with noisy odometry, a view every this many footsteps walked; 0 = none
 };
 
 // The mission's behaviour: how far a motion command goes before the robot re-plans, and when it

@@ -356,7 +356,11 @@ void MissionRobot::OnTick() {
 
 void MissionRobot::RunController() {
   const auto start = Clock::now();
-  const int every = perception_.view_every_steps;
+  // views while walking feed the visual odometry; with exact odometry there is nothing to track
+  const bool tracking = perception_.localization.mode == perception::LocalizationMode::kVisual &&
+                        (step_covariance_.trace() > 0 || scenario_.odometry_stride_scale > 0 ||
+                         scenario_.odometry_yaw_bias > 0);
+  const int every = tracking ? perception_.view_every_steps : 0;
   int last_view_steps = controller_.steps();
   double perceive_ms = 0;
   controller_.RunUntilIdle(world_.model(), world_.data(), [&](int) {
