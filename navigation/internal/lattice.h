@@ -23,11 +23,17 @@ namespace fognav::navigation::internal {
 struct CellStep {
   int dx = 0, dy = 0;
 };
+// The 16 cell steps, counter-clockwise from +x.
+inline constexpr CellStep kSteps[kNumHeadings] = {
+    {1, 0},  {2, 1},   {1, 1},   {1, 2},   {0, 1},  {-1, 2}, {-1, 1}, {-2, 1},
+    {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2}, {0, -1}, {1, -2}, {1, -1}, {2, -1}};
 CellStep HeadingStep(int heading);
 // Yaw of lattice heading k in radians, in (-pi, pi].
 double HeadingYaw(int heading);
 // Lattice heading nearest to a yaw.
 int NearestHeading(double yaw);
+// An angle wrapped to (-pi, pi].
+double WrapAngle(double a);
 
 // One edge of the graph.
 struct Successor {
@@ -97,10 +103,19 @@ struct Climb {
 // size, not on the map: footprints, the body's and the sweeps' cell offsets, the climbs. Each
 // thread builds them once per robot and cell size (Lattice copies them); the members carry
 // Lattice's names, whose private base this is.
+struct ShapeFrame;  // the robot's extents and the headings' frames, while building
 struct LatticeShapes {
   // Builds the shapes for `p`'s sizes on cells of `resolution` metres; aborts on sizes that
   // make no footprint.
   void Build(const PlannerParams& p, double resolution);
+  // the parts of Build: footprints (and the soles' level cells), the standing body beyond
+  // them, standing turns' sweeps, the head's disc, blind moves' leads, climbs
+  void BuildFootprints(const ShapeFrame& f);
+  void BuildBody(const ShapeFrame& f);
+  void BuildTurnSweeps(const ShapeFrame& f);
+  void BuildHead(const ShapeFrame& f);
+  void BuildBlindLeads();
+  void BuildClimbs(const ShapeFrame& f);
 
   double step_length_[kNumHeadings] = {};  // metres
   double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
@@ -133,6 +148,10 @@ struct LatticeShapes {
   // max_step_length whose part across the heading is at most max_step_sideways
   std::vector<Climb> climbs_[kNumHeadings];
 };
+
+// The shapes for p's sizes and the cell size, built on a thread's first use of them and kept (a
+// few robots' worth: the oldest go when more come).
+const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution);
 
 class Lattice : private LatticeShapes {
  public:
