@@ -187,6 +187,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   }
 
   ComputeFloorHeights();
+  head_meets_.assign(size_t(num_cells_), 0);
   ComputeLevelRanges();
   ComputePermissions();
   ComputeCellCosts();
@@ -753,7 +754,11 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   if (in > 0 && d2 <= in * in) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   const float centre_h = floor_h_[size_t(cell)];
-  if (q == 0 && HeadMeetsSolid(cell, ix, iy, centre_h)) return false;
+  if (q == 0) {
+    uint8_t& head = head_meets_[size_t(cell)];  // the same at every heading
+    if (head == 0) head = HeadMeetsSolid(cell, ix, iy, centre_h) ? 2 : 1;
+    if (head == 2) return false;
+  }
   const int reach = outer_reach_cells_[q];
   const bool inside =
       ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;

@@ -323,6 +323,8 @@ class Lattice : private LatticeShapes {
   // the square around it that level_lo_ and level_hi_ cover
   std::vector<float> hidden_top_, hidden_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
+  // per cell: HeadMeetsSolid for a standing origin there, 0 not yet known, 1 no, 2 yes
+  mutable std::vector<uint8_t> head_meets_;
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
   // (border cells block a standing robot only off its own level)
   std::vector<double> blocked_d2_[2];
