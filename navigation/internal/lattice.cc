@@ -910,14 +910,16 @@ int Lattice::Successors(int s, Successor* out) {
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`; standing, the soles sweep level floor only,
-  // and a body sweeping into an obstacle costs as one ending there
+  // and a body sweeping into an obstacle costs as one ending there; crawling, the head, hands and
+  // knees sweep only cells they may lie on
   auto turn = [&](int k2, double angle, double factor) {
     const int t = StateIndex(ix, iy, k2, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
     int touch = int(flags >> 2);
-    if (posture == Posture::kUpright &&
-        !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touch)) {
+    const int from = k2 == (k + 1) % kNumHeadings ? k : k2;
+    if (posture == Posture::kUpright ? !TurnSweepClear(cell, from, &touch)
+                                     : !CrawlTurnClear(cell, from)) {
       return;
     }
     double cost = angle * p_.turn_cost_per_rad * factor + TouchCost(touch);
@@ -1086,6 +1088,20 @@ bool Lattice::TurnSweepClear(int cell, int k, int* touch) const {
   // the body, as BodyTouches
   if (*touch != kTouch) {
     *touch = std::max(*touch, BodyMeets(cell, turn_body_[k], turn_body_legs_[k]));
+  }
+  return true;
+}
+
+bool Lattice::CrawlTurnClear(int cell, int k) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const float centre_h = floor_h_[size_t(cell)];
+  for (const CellStep& o : turn_crawl_[k]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) return false;  // beyond the window is unknown, never crawled on
+    const size_t i = size_t(w.Index(nx, ny));
+    if (ok_[1][i]) continue;
+    if (!MayBeLevelBorder(i, 1) || !OnLevel(i, centre_h, p_.h_floor)) return false;
   }
   return true;
 }

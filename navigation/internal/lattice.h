@@ -109,10 +109,11 @@ struct LatticeShapes {
   // make no footprint.
   void Build(const PlannerParams& p, double resolution);
   // the parts of Build: footprints (and the soles' level cells), the standing body beyond
-  // them, standing turns' sweeps, the head's disc, blind moves' leads, climbs
+  // them, standing and crawling turns' sweeps, the head's disc, blind moves' leads, climbs
   void BuildFootprints(const ShapeFrame& f);
   void BuildBody(const ShapeFrame& f);
   void BuildTurnSweeps(const ShapeFrame& f);
+  void BuildCrawlTurnSweeps(const ShapeFrame& f);
   void BuildHead(const ShapeFrame& f);
   void BuildBlindLeads();
   void BuildClimbs(const ShapeFrame& f);
@@ -133,6 +134,9 @@ struct LatticeShapes {
   // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
   std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
   double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
+  // [k]: offsets the crawling footprint (head, hands and knees) sweeps in a turn in place
+  // between heading k and k + 1 beyond both ends' footprints
+  std::vector<CellStep> turn_crawl_[kNumHeadings];
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
   // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
   int body_reach_cells_ = 0;
@@ -285,6 +289,9 @@ class Lattice : private LatticeShapes {
   // in between (the origin's among them) span more than h_floor (a corner would catch on a
   // riser); raises *touch to what the body sweeps, as BodyMeets.
   bool TurnSweepClear(int cell, int k, int* touch) const;
+  // For a crawling turn in place at `cell` between heading k and k + 1: whether every cell the
+  // crawling footprint sweeps beyond both ends' may lie under it (as FootprintFits crawling).
+  bool CrawlTurnClear(int cell, int k) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
   void ComputeLevelRanges();

@@ -101,6 +101,7 @@ void LatticeShapes::Build(const PlannerParams& p, double resolution) {
   BuildFootprints(f);
   BuildBody(f);
   BuildTurnSweeps(f);
+  BuildCrawlTurnSweeps(f);
   BuildHead(f);
   BuildBlindLeads();
   BuildClimbs(f);
@@ -215,6 +216,33 @@ void LatticeShapes::BuildTurnSweeps(const ShapeFrame& f) {
       for (const CellStep& o : turn_soles_[k]) {
         turn_soles_radius_cells_ =
             std::max(turn_soles_radius_cells_, std::hypot(double(o.dx), double(o.dy)));
+      }
+    }
+  }
+}
+
+void LatticeShapes::BuildCrawlTurnSweeps(const ShapeFrame& f) {
+  // crawling turns in place between heading k and k + 1: the cells the crawling footprint (head,
+  // hands and knees) sweeps at the angles in between (every degree or less) beyond both ends'
+  const double a = f.half_along[1], b = f.half_across[1];
+  const int reach = int(std::ceil(outer_radius_cells_[1])) + 1;
+  for (int k = 0; k < kNumHeadings; ++k) {
+    const int k2 = (k + 1) % kNumHeadings;
+    const double yaw = HeadingYaw(k), turn = WrapAngle(HeadingYaw(k2) - yaw);
+    const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
+    turn_crawl_[k].clear();
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        if (Covers(footprint_[1][k], dx, dy) || Covers(footprint_[1][k2], dx, dy)) continue;
+        for (int j = 1; j < n; ++j) {
+          const double c = std::cos(yaw + turn * j / n), s = std::sin(yaw + turn * j / n);
+          const double u = (dx * c + dy * s) * f.resolution - f.p.crawl_offset;
+          const double v = (-dx * s + dy * c) * f.resolution;
+          if (std::abs(u) <= a + kEps && std::abs(v) <= b + kEps) {
+            turn_crawl_[k].push_back({dx, dy});
+            break;
+          }
+        }
       }
     }
   }
