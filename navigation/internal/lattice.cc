@@ -1,13 +1,11 @@
 #include "navigation/internal/lattice.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
 #include <limits>
-#include <memory>
 #include <queue>
 #include <utility>
 
@@ -20,12 +18,6 @@ using perception::CellType;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kEps = 1e-9;
-
-// Whether offset (dx, dy) is one of `cells`.
-bool Covers(const std::vector<CellStep>& cells, int dx, int dy) {
-  return std::any_of(cells.begin(), cells.end(),
-                     [&](const CellStep& c) { return c.dx == dx && c.dy == dy; });
-}
 
 // The range of the known floor heights under the soles: they stand level when it spans at most
 // h_floor. Each cell within h_floor of the origin's alone lets a cell across a riser, whose
@@ -47,20 +39,9 @@ class Spread {
   double lo_ = kInf, hi_ = -kInf;
 };
 
-constexpr CellStep kSteps[kNumHeadings] = {{1, 0},  {2, 1},   {1, 1},   {1, 2},
-                                           {0, 1},  {-1, 2},  {-1, 1},  {-2, 1},
-                                           {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2},
-                                           {0, -1}, {1, -2},  {1, -1},  {2, -1}};
-
 [[noreturn]] void Die(const char* what) {
   std::fprintf(stderr, "fognav::navigation: %s\n", what);
   std::abort();
-}
-
-double WrapAngle(double a) {
-  while (a > M_PI) a -= 2 * M_PI;
-  while (a <= -M_PI) a += 2 * M_PI;
-  return a;
 }
 
 // felzenszwalb & huttenlocher's lower envelope of parabolas, one line of the transform
@@ -97,6 +78,12 @@ void Transform1d(const double* f, int n, int stride, double* d, std::vector<int>
 }
 
 }  // namespace
+
+double WrapAngle(double a) {
+  while (a > M_PI) a -= 2 * M_PI;
+  while (a <= -M_PI) a += 2 * M_PI;
+  return a;
+}
 
 CellStep HeadingStep(int heading) { return kSteps[heading]; }
 
@@ -159,260 +146,6 @@ uint32_t SearchMemory::Begin(int num_states) {
   return generation;
 }
 
-void LatticeShapes::Build(const PlannerParams& p, double resolution) {
-  cos_stairs_error_ = std::cos(std::clamp(p.max_stairs_heading_error, 0.0, M_PI));
-  for (int k = 0; k < kNumHeadings; ++k) {
-    step_length_[k] = std::hypot(double(kSteps[k].dx), double(kSteps[k].dy)) * resolution;
-    turn_angle_[k] = std::abs(WrapAngle(HeadingYaw((k + 1) % kNumHeadings) - HeadingYaw(k)));
-    kneel_steps_[k] = int(std::lround(p.kneel_offset / step_length_[k]));
-  }
-
-  // a cell offset in the frame of heading k: along and across it, metres
-  double cos_k[kNumHeadings], sin_k[kNumHeadings];
-  for (int k = 0; k < kNumHeadings; ++k) {
-    cos_k[k] = std::cos(HeadingYaw(k));
-    sin_k[k] = std::sin(HeadingYaw(k));
-  }
-  auto in_frame = [&](int k, int dx, int dy) {
-    const double c = cos_k[k], s = sin_k[k];
-    return Eigen::Vector2d((dx * c + dy * s) * resolution, (-dx * s + dy * c) * resolution);
-  };
-  // the offsets up to `reach` cells away whose centres lie in [u_lo, u_hi] x [v_lo, v_hi] of
-  // the frame of heading k
-  auto cells_in = [&](int k, int reach, double u_lo, double u_hi, double v_lo, double v_hi) {
-    std::vector<CellStep> cells;
-    for (int dy = -reach; dy <= reach; ++dy) {
-      for (int dx = -reach; dx <= reach; ++dx) {
-        const Eigen::Vector2d uv = in_frame(k, dx, dy);
-        if (uv.x() >= u_lo - kEps && uv.x() <= u_hi + kEps && uv.y() >= v_lo - kEps &&
-            uv.y() <= v_hi + kEps) {
-          cells.push_back({dx, dy});
-        }
-      }
-    }
-    return cells;
-  };
-  auto max_component = [](const std::vector<CellStep>& cells) {
-    int m = 0;
-    for (const CellStep& o : cells) m = std::max({m, std::abs(o.dx), std::abs(o.dy)});
-    return m;
-  };
-
-  // footprints: cells whose centres lie in the grown rectangle
-  const double half_along[2] = {0.5 * p.depth + p.margin, 0.5 * p.crawl_length + p.margin};
-  const double half_across[2] = {0.5 * p.shoulder_width + p.margin,
-                                 0.5 * p.crawl_width + p.margin};
-  // standing: the soles' stance grown by level_margin (an offset's centre in the frame of the
-  // heading inside it), and the body rectangle
-  const double level_along = 0.5 * p.depth + p.level_margin,
-               level_across = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.level_margin;
-  auto in_stance = [&](const Eigen::Vector2d& uv) {
-    return std::abs(uv.x()) <= level_along + kEps && std::abs(uv.y()) <= level_across + kEps;
-  };
-  const double body_back = p.body_back + p.margin, body_front = p.body_front + p.margin;
-  const double body_half = std::max(half_across[0], p.arm_reach + p.margin);
-  const double legs_half = 0.5 * std::min(p.stance_width, p.shoulder_width) + p.margin;
-  for (int q = 0; q < 2; ++q) {
-    const double a = half_along[q], b = half_across[q];
-    const double offset = q == 0 ? 0.0 : p.crawl_offset;  // rectangle centre ahead of the origin
-    if (!(a > 0 && b > 0)) Die("Plan: footprint sizes must be positive");
-    if (std::abs(offset) >= a) Die("Plan: crawl_offset must be inside the crawling footprint");
-    // circles about the robot's origin inside and around the rectangle
-    inner_radius_cells_[q] = std::min(a - std::abs(offset), b) / resolution;
-    outer_radius_cells_[q] = std::hypot(a + std::abs(offset), b) / resolution;
-    const int reach = int(std::ceil(outer_radius_cells_[q])) + 1;
-    outer_reach_cells_[q] = 0;
-    for (int k = 0; k < kNumHeadings; ++k) {
-      std::vector<CellStep>& cells = footprint_[q][k];
-      cells = cells_in(k, reach, offset - a, offset + a, -b, b);
-      outer_reach_cells_[q] = std::max(outer_reach_cells_[q], max_component(cells));
-      // outermost cells first: they meet obstacles first
-      std::sort(cells.begin(), cells.end(), [](const CellStep& l, const CellStep& r) {
-        return l.dx * l.dx + l.dy * l.dy > r.dx * r.dx + r.dy * r.dy;
-      });
-      if (q == 1) continue;
-      level_cell_[k].clear();
-      for (const CellStep& o : cells) level_cell_[k].push_back(in_stance(in_frame(k, o.dx, o.dy)));
-    }
-  }
-
-  // the standing body beyond the soles' footprint
-  {
-    if (!(body_back >= 0 && body_front >= 0)) Die("Plan: body extents must not be negative");
-    body_outer_radius_cells_ = std::hypot(std::max(body_back, body_front), body_half) / resolution;
-    const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
-    for (int k = 0; k < kNumHeadings; ++k) {
-      std::vector<CellStep>& extra = body_extra_[k];
-      extra = cells_in(k, reach, -body_back, body_front, -body_half, body_half);
-      extra.erase(
-          std::remove_if(extra.begin(), extra.end(),
-                         [&](const CellStep& o) { return Covers(footprint_[0][k], o.dx, o.dy); }),
-          extra.end());
-      body_reach_cells_ = std::max(body_reach_cells_, max_component(extra));
-      body_extra_legs_[k].clear();
-      for (const CellStep& o : extra) {
-        body_extra_legs_[k].push_back(std::abs(in_frame(k, o.dx, o.dy).y()) <= legs_half + kEps);
-      }
-    }
-  }
-
-  // turns in place between heading k and k + 1: the cells the soles' stance (grown by
-  // level_margin) and the body sweep at the angles in between, beyond what the two ends cover
-  // (the robot turns about its origin; the shapes every degree or less). The body sweeps as the
-  // shape it has, not as its bounding rectangle, whose corners (the knees' reach ahead, the
-  // hands' to the side) hold no part of it and would sweep 2 cm further out: the legs as far
-  // ahead and behind as the body rectangle and as wide as the footprint, the arms beside the
-  // footprint as far out as the hands.
-  {
-    const double a = half_along[0], b = half_across[0];
-    const int reach = int(std::ceil(body_outer_radius_cells_)) + 1;
-    auto in_body_shape = [&](const Eigen::Vector2d& uv) {
-      return (uv.x() >= -body_back - kEps && uv.x() <= body_front + kEps &&
-              std::abs(uv.y()) <= b + kEps) ||
-             (std::abs(uv.x()) <= a + kEps && std::abs(uv.y()) <= body_half + kEps);
-    };
-    // what the ends' own checks cover: the footprint and the body rectangle beyond it
-    auto at_ends = [&](int k, int k2, int dx, int dy) {
-      return Covers(footprint_[0][k], dx, dy) || Covers(body_extra_[k], dx, dy) ||
-             Covers(footprint_[0][k2], dx, dy) || Covers(body_extra_[k2], dx, dy);
-    };
-    for (int k = 0; k < kNumHeadings; ++k) {
-      const int k2 = (k + 1) % kNumHeadings;
-      const double yaw = HeadingYaw(k), turn = WrapAngle(HeadingYaw(k2) - yaw);
-      const int n = std::max(2, int(std::ceil(std::abs(turn) / (M_PI / 180))));
-      std::vector<double> cos_j(static_cast<size_t>(n)), sin_j(static_cast<size_t>(n));
-      for (int j = 1; j < n; ++j) {
-        cos_j[size_t(j)] = std::cos(yaw + turn * j / n) * resolution;
-        sin_j[size_t(j)] = std::sin(yaw + turn * j / n) * resolution;
-      }
-      turn_soles_[k].clear();
-      turn_body_[k].clear();
-      turn_body_legs_[k].clear();
-      for (int dy = -reach; dy <= reach; ++dy) {
-        for (int dx = -reach; dx <= reach; ++dx) {
-          bool soles = false, body = false, legs = false;
-          for (int j = 1; j < n && !(soles && legs); ++j) {
-            const double c = cos_j[size_t(j)], s = sin_j[size_t(j)];
-            const Eigen::Vector2d uv(dx * c + dy * s, -dx * s + dy * c);
-            soles = soles || in_stance(uv);
-            body = body || in_body_shape(uv);
-            legs = legs || (uv.x() >= -body_back - kEps && uv.x() <= body_front + kEps &&
-                            std::abs(uv.y()) <= legs_half + kEps);
-          }
-          if (soles && !in_stance(in_frame(k, dx, dy)) && !in_stance(in_frame(k2, dx, dy))) {
-            turn_soles_[k].push_back({dx, dy});
-          }
-          if (body && !at_ends(k, k2, dx, dy)) {
-            turn_body_[k].push_back({dx, dy});
-            turn_body_legs_[k].push_back(legs);
-          }
-        }
-      }
-      body_reach_cells_ = std::max(
-          {body_reach_cells_, max_component(turn_soles_[k]), max_component(turn_body_[k])});
-      for (const CellStep& o : turn_soles_[k]) {
-        turn_soles_radius_cells_ =
-            std::max(turn_soles_radius_cells_, std::hypot(double(o.dx), double(o.dy)));
-      }
-    }
-  }
-
-  // the head's reach
-  {
-    const double head = (p.head_reach + p.margin) / resolution + kEps;
-    const int reach = int(std::ceil(head));
-    head_disc_.clear();
-    for (int dy = -reach; dy <= reach; ++dy) {
-      for (int dx = -reach; dx <= reach; ++dx) {
-        if (std::hypot(double(dx), double(dy)) <= head) head_disc_.push_back({dx, dy});
-      }
-    }
-    body_reach_cells_ = std::max(body_reach_cells_, reach);
-  }
-
-  // the cells a blind move brings under the footprint: offsets o of the new footprint with
-  // o + step (relative to the old origin) outside the old one
-  for (int q = 0; q < 2; ++q) {
-    for (int k = 0; k < kNumHeadings; ++k) {
-      const CellStep ahead = kSteps[k], across = kSteps[(k + 4) % kNumHeadings];
-      const CellStep delta[4] = {{-ahead.dx, -ahead.dy},
-                                 {across.dx, across.dy},
-                                 {-across.dx, -across.dy},
-                                 {ahead.dx, ahead.dy}};
-      for (int b = 0; b < 4; ++b) {
-        std::vector<CellStep>& lead = blind_lead_[q][k][b];
-        lead.clear();
-        for (const CellStep& o : footprint_[q][k]) {
-          if (!Covers(footprint_[q][k], o.dx + delta[b].dx, o.dy + delta[b].dy)) lead.push_back(o);
-        }
-      }
-    }
-  }
-
-  // climbs: every cell offset ahead within max_step_length whose part across the heading is at
-  // most max_step_sideways (so at 26.6 and 45 degrees, whose lattice steps of 0.089 and 0.057 m
-  // do not add up to a step over a riser within the limit, the robot still climbs on its
-  // heading), with the cells the standing footprint sweeps: centres in the rectangle from the
-  // start footprint's back edge to the end footprint's front edge, as wide as the two side by side
-  const int reach_end = int(std::ceil(p.max_step_length / resolution + kEps));
-  for (int k = 0; k < kNumHeadings; ++k) {
-    const double a = half_along[0], b = half_across[0];
-    climbs_[k].clear();
-    for (int ey = -reach_end; ey <= reach_end; ++ey) {
-      for (int ex = -reach_end; ex <= reach_end; ++ex) {
-        const Eigen::Vector2d end = in_frame(k, ex, ey);
-        const double along = end.x(), across = end.y(), length = std::hypot(along, across);
-        if (along <= kEps || length > p.max_step_length + kEps ||
-            std::abs(across) > p.max_step_sideways + kEps) {
-          continue;
-        }
-        Climb climb;
-        climb.to = {ex, ey};
-        climb.length = length;
-        climb.across = across;
-        const int reach = int(std::ceil((length + std::hypot(a, b)) / resolution)) + 1;
-        climb.swept =
-            cells_in(k, reach, -a, along + a, std::min(0.0, across) - b, std::max(0.0, across) + b);
-        const int n = std::max(std::abs(ex), std::abs(ey));
-        for (int j = 1; j <= n; ++j) {
-          climb.line.push_back(
-              {int(std::lround(double(j * ex) / n)), int(std::lround(double(j * ey) / n))});
-        }
-        climbs_[k].push_back(std::move(climb));
-      }
-    }
-    std::stable_sort(climbs_[k].begin(), climbs_[k].end(), [](const Climb& x, const Climb& y) {
-      return x.length < y.length - kEps ||
-             (x.length <= y.length + kEps && std::abs(x.across) < std::abs(y.across) - kEps);
-    });
-  }
-}
-
-namespace {
-
-// The shapes for p's sizes and the cell size, built on a thread's first use of them and kept (a
-// few robots' worth: the oldest go when more come).
-const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution) {
-  // every PlannerParams field that LatticeShapes::Build reads
-  using Key = std::array<double, 17>;
-  const Key key = {resolution, p.shoulder_width, p.depth, p.crawl_length, p.crawl_width,
-                   p.crawl_offset, p.margin, p.level_margin, p.stance_width, p.body_back,
-                   p.body_front, p.arm_reach, p.head_reach, p.max_step_length,
-                   p.max_step_sideways, p.max_stairs_heading_error, p.kneel_offset};
-  thread_local std::vector<std::pair<Key, std::unique_ptr<LatticeShapes>>> cache;
-  for (const auto& [k, shapes] : cache) {
-    if (k == key) return *shapes;
-  }
-  constexpr size_t kKept = 8;
-  if (cache.size() == kKept) cache.erase(cache.begin());
-  auto shapes = std::make_unique<LatticeShapes>();
-  shapes->Build(p, resolution);
-  cache.emplace_back(key, std::move(shapes));
-  return *cache.back().second;
-}
-
-}  // namespace
-
 Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, const PlannerParams& p,
                  SearchMemory* memory, End end, bool heuristic)
     : fog_(fog), p_(p), goal_G_(goal_G), end_(end), memory_(memory ? memory : &own_memory_) {
@@ -454,6 +187,7 @@ Lattice::Lattice(const perception::Fog& fog, const Eigen::Vector2d& goal_G, cons
   }
 
   ComputeFloorHeights();
+  head_meets_.assign(size_t(num_cells_), 0);
   ComputeLevelRanges();
   ComputePermissions();
   ComputeCellCosts();
@@ -1020,7 +754,11 @@ bool Lattice::FootprintFits(int cell, int heading, int q) const {
   if (in > 0 && d2 <= in * in) return false;
   const int ix = cell % w.size_x, iy = cell / w.size_x;
   const float centre_h = floor_h_[size_t(cell)];
-  if (q == 0 && HeadMeetsSolid(cell, ix, iy, centre_h)) return false;
+  if (q == 0) {
+    uint8_t& head = head_meets_[size_t(cell)];  // the same at every heading
+    if (head == 0) head = HeadMeetsSolid(cell, ix, iy, centre_h) ? 2 : 1;
+    if (head == 2) return false;
+  }
   const int reach = outer_reach_cells_[q];
   const bool inside =
       ix - reach >= 0 && iy - reach >= 0 && ix + reach < w.size_x && iy + reach < w.size_y;
@@ -1172,14 +910,16 @@ int Lattice::Successors(int s, Successor* out) {
     out[n++] = {t, cost, length, move};
   };
   // a turn in place to heading k2 at angle `angle`; standing, the soles sweep level floor only,
-  // and a body sweeping into an obstacle costs as one ending there
+  // and a body sweeping into an obstacle costs as one ending there; crawling, the head, hands and
+  // knees sweep only cells they may lie on
   auto turn = [&](int k2, double angle, double factor) {
     const int t = StateIndex(ix, iy, k2, posture);
     const uint32_t flags = StateFlags(t);
     if (!(flags & 1u)) return;
     int touch = int(flags >> 2);
-    if (posture == Posture::kUpright &&
-        !TurnSweepClear(cell, k2 == (k + 1) % kNumHeadings ? k : k2, &touch)) {
+    const int from = k2 == (k + 1) % kNumHeadings ? k : k2;
+    if (posture == Posture::kUpright ? !TurnSweepClear(cell, from, &touch)
+                                     : !CrawlTurnClear(cell, from)) {
       return;
     }
     double cost = angle * p_.turn_cost_per_rad * factor + TouchCost(touch);
@@ -1348,6 +1088,20 @@ bool Lattice::TurnSweepClear(int cell, int k, int* touch) const {
   // the body, as BodyTouches
   if (*touch != kTouch) {
     *touch = std::max(*touch, BodyMeets(cell, turn_body_[k], turn_body_legs_[k]));
+  }
+  return true;
+}
+
+bool Lattice::CrawlTurnClear(int cell, int k) const {
+  const perception::GridWindow& w = fog_.window;
+  const int ix = cell % w.size_x, iy = cell / w.size_x;
+  const float centre_h = floor_h_[size_t(cell)];
+  for (const CellStep& o : turn_crawl_[k]) {
+    const int nx = ix + o.dx, ny = iy + o.dy;
+    if (!w.Contains(nx, ny)) return false;  // beyond the window is unknown, never crawled on
+    const size_t i = size_t(w.Index(nx, ny));
+    if (ok_[1][i]) continue;
+    if (!MayBeLevelBorder(i, 1) || !OnLevel(i, centre_h, p_.h_floor)) return false;
   }
   return true;
 }

@@ -23,11 +23,17 @@ namespace fognav::navigation::internal {
 struct CellStep {
   int dx = 0, dy = 0;
 };
+// The 16 cell steps, counter-clockwise from +x.
+inline constexpr CellStep kSteps[kNumHeadings] = {
+    {1, 0},  {2, 1},   {1, 1},   {1, 2},   {0, 1},  {-1, 2}, {-1, 1}, {-2, 1},
+    {-1, 0}, {-2, -1}, {-1, -1}, {-1, -2}, {0, -1}, {1, -2}, {1, -1}, {2, -1}};
 CellStep HeadingStep(int heading);
 // Yaw of lattice heading k in radians, in (-pi, pi].
 double HeadingYaw(int heading);
 // Lattice heading nearest to a yaw.
 int NearestHeading(double yaw);
+// An angle wrapped to (-pi, pi].
+double WrapAngle(double a);
 
 // One edge of the graph.
 struct Successor {
@@ -97,10 +103,20 @@ struct Climb {
 // size, not on the map: footprints, the body's and the sweeps' cell offsets, the climbs. Each
 // thread builds them once per robot and cell size (Lattice copies them); the members carry
 // Lattice's names, whose private base this is.
+struct ShapeFrame;  // the robot's extents and the headings' frames, while building
 struct LatticeShapes {
   // Builds the shapes for `p`'s sizes on cells of `resolution` metres; aborts on sizes that
   // make no footprint.
   void Build(const PlannerParams& p, double resolution);
+  // the parts of Build: footprints (and the soles' level cells), the standing body beyond
+  // them, standing and crawling turns' sweeps, the head's disc, blind moves' leads, climbs
+  void BuildFootprints(const ShapeFrame& f);
+  void BuildBody(const ShapeFrame& f);
+  void BuildTurnSweeps(const ShapeFrame& f);
+  void BuildCrawlTurnSweeps(const ShapeFrame& f);
+  void BuildHead(const ShapeFrame& f);
+  void BuildBlindLeads();
+  void BuildClimbs(const ShapeFrame& f);
 
   double step_length_[kNumHeadings] = {};  // metres
   double turn_angle_[kNumHeadings] = {};   // radians from heading k to k+1
@@ -118,6 +134,9 @@ struct LatticeShapes {
   // sweep in a turn in place between heading k and k + 1 beyond what both ends' checks cover
   std::vector<CellStep> turn_soles_[kNumHeadings], turn_body_[kNumHeadings];
   double turn_soles_radius_cells_ = 0;  // largest distance of an offset in turn_soles_, cells
+  // [k]: offsets the crawling footprint (head, hands and knees) sweeps in a turn in place
+  // between heading k and k + 1 beyond both ends' footprints
+  std::vector<CellStep> turn_crawl_[kNumHeadings];
   double body_outer_radius_cells_ = 0;  // circumscribed radius of the body rectangle, cells
   // largest |offset| component of body_extra_, turn_soles_, turn_body_ and head_disc_
   int body_reach_cells_ = 0;
@@ -133,6 +152,10 @@ struct LatticeShapes {
   // max_step_length whose part across the heading is at most max_step_sideways
   std::vector<Climb> climbs_[kNumHeadings];
 };
+
+// The shapes for p's sizes and the cell size, built on a thread's first use of them and kept (a
+// few robots' worth: the oldest go when more come).
+const LatticeShapes& CachedShapes(const PlannerParams& p, double resolution);
 
 class Lattice : private LatticeShapes {
  public:
@@ -266,6 +289,9 @@ class Lattice : private LatticeShapes {
   // in between (the origin's among them) span more than h_floor (a corner would catch on a
   // riser); raises *touch to what the body sweeps, as BodyMeets.
   bool TurnSweepClear(int cell, int k, int* touch) const;
+  // For a crawling turn in place at `cell` between heading k and k + 1: whether every cell the
+  // crawling footprint sweeps beyond both ends' may lie under it (as FootprintFits crawling).
+  bool CrawlTurnClear(int cell, int k) const;
   bool InGoalRegion(int cell) const;
   void ComputeFloorHeights();
   void ComputeLevelRanges();
@@ -304,6 +330,8 @@ class Lattice : private LatticeShapes {
   // the square around it that level_lo_ and level_hi_ cover
   std::vector<float> hidden_top_, hidden_hi_;
   std::vector<uint8_t> ok_[2];          // per cell: the posture may have this cell under it
+  // per cell: HeadMeetsSolid for a standing origin there, 0 not yet known, 1 no, 2 yes
+  mutable std::vector<uint8_t> head_meets_;
   // per cell: squared distance (cells) to a cell that blocks the posture, and to one that may
   // (border cells block a standing robot only off its own level)
   std::vector<double> blocked_d2_[2];

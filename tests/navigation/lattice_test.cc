@@ -535,6 +535,53 @@ const Successor* SuccessorTo(Lattice* lattice, int s, int t, Successor* succ) {
   return nullptr;
 }
 
+// A crawling turn in place sweeps its head and hands through cells neither end covers: one such
+// cell, found here from the footprint's sizes, refuses the turn when it is an obstacle, though
+// both ends fit.
+TEST(Lattice, CrawlingTurnIsRefusedWhenACellOnlyItsSweepCoversIsAnObstacle) {
+  const PlannerParams p;
+  const double a = 0.5 * p.crawl_length + p.margin, b = 0.5 * p.crawl_width + p.margin;
+  const int cx = 30, cy = 30;
+  auto under = [&](double yaw, int dx, int dy) {
+    const double u = (dx * std::cos(yaw) + dy * std::sin(yaw)) * 0.04 - p.crawl_offset;
+    const double v = (-dx * std::sin(yaw) + dy * std::cos(yaw)) * 0.04;
+    return std::abs(u) <= a + 1e-9 && std::abs(v) <= b + 1e-9;
+  };
+  // the first cell under the footprint part way through a turn from heading k to k + 1 but
+  // under neither end's
+  int sx = 0, sy = 0, k = 0;
+  bool found = false;
+  for (k = 0; k < kNumHeadings / 4 && !found; ++k) {
+    const double y0 = HeadingYaw(k), y1 = HeadingYaw(k + 1);
+    for (int j = 1; j < 16 && !found; ++j) {
+      const double yaw = y0 + (y1 - y0) * j / 16;
+      for (int dy = -12; dy <= 12 && !found; ++dy) {
+        for (int dx = -12; dx <= 12 && !found; ++dx) {
+          if (under(yaw, dx, dy) && !under(y0, dx, dy) && !under(y1, dx, dy)) {
+            sx = dx, sy = dy, found = true;
+          }
+        }
+      }
+    }
+  }
+  --k;
+  ASSERT_TRUE(found);
+  for (const bool blocked : {false, true}) {
+    Fog fog = FlatFog(60, 60, 0.04, CellType::kTunnel);
+    if (blocked) {
+      fog.type[size_t(fog.window.Index(cx + sx, cy + sy))] = CellType::kObstacle;
+      fog.height[size_t(fog.window.Index(cx + sx, cy + sy))] = 0.3f;
+    }
+    Lattice lattice(fog, {2.2, 1.2}, p);
+    const int from = lattice.StateIndex(cx, cy, k, Posture::kCrawling);
+    const int to = lattice.StateIndex(cx, cy, k + 1, Posture::kCrawling);
+    ASSERT_TRUE(lattice.Valid(from) && lattice.Valid(to)) << blocked;
+    Successor succ[kMaxSuccessors];
+    EXPECT_EQ(SuccessorTo(&lattice, from, to, succ) == nullptr, blocked) << blocked;
+    EXPECT_EQ(SuccessorTo(&lattice, to, from, succ) == nullptr, blocked) << blocked;
+  }
+}
+
 // The cost of the standing move from cell (x0, y0) to (x1, y1) at heading k on `fog` with goal
 // `goal`, or -1 if the lattice offers no such move.
 double StandingMoveCost(const Fog& fog, const Eigen::Vector2d& goal, const PlannerParams& p, int k,
