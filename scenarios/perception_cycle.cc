@@ -138,15 +138,19 @@ ViewResult PerceiveView(const PerceptionParams& params, DepthMode mode, const St
   // the pose, corrected by the walls seen before; the camera and the body go with it
   if (localization != nullptr) {
     const auto start_localization = Clock::now();
-    const perception::GrayImage gray = perception::ToGray(view.left);
+    // the image and the depth off the body only for the visual odometry
+    const bool visual = params.localization.mode == perception::LocalizationMode::kVisual &&
+                        !params.subsample;
+    const perception::GrayImage gray =
+        visual ? perception::ToGray(view.left) : perception::GrayImage();
     const perception::DepthImage depth =
-        params.subsample ? perception::DepthImage()
-                         : DepthOffBody(result.points, X_RC, body_R, params.label.self_filter_margin);
+        visual ? DepthOffBody(result.points, X_RC, body_R, params.label.self_filter_margin)
+               : perception::DepthImage();
     perception::LocalizationView in;
     in.planes_C = &result.planes.planes;
     in.image_pixels = result.points.width * result.points.height;
-    in.gray = &gray;
-    in.depth = depth.empty() ? nullptr : &depth;
+    in.gray = visual ? &gray : nullptr;
+    in.depth = visual ? &depth : nullptr;
     in.intrinsics = view.intrinsics;
     in.X_RC = X_RC;
     in.floor_z = floor_z;
